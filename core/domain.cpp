@@ -1,0 +1,201 @@
+#include "core/domain.hpp"
+
+#include "core/error.hpp"
+#include "core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace ablmg {
+namespace {
+
+double loopSignedArea(const BoundaryLoop& loop) {
+  double a = 0;
+  const std::size_t n = loop.points.size();
+  for (std::size_t k = 0; k < n; ++k) a += cross(loop.points[k], loop.points[(k + 1) % n]);
+  return 0.5 * a;
+}
+
+void reverseLoop(BoundaryLoop& loop) {
+  // segment k (p_k → p_{k+1}) becomes segment n−2−k of the reversed loop (p_{k+1} → p_k)
+  const std::size_t n = loop.points.size();
+  std::vector<Vec2> pts(n);
+  std::vector<int> tags(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    pts[k] = loop.points[(n - k) % n];          // p0, p_{n−1}, ..., p1
+    tags[k] = loop.tags[(2 * n - k - 1) % n];   // segment (p_{n−k} → p_{n−k−1}) was tag[n−k−1]
+  }
+  loop.points = std::move(pts);
+  loop.tags = std::move(tags);
+}
+
+const char* loopName(std::size_t l) { return l == 0 ? "outer loop" : "hole"; }
+
+} // namespace
+
+Domain::Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes) {
+  loops_.push_back(std::move(outer));
+  for (auto& h : holes) loops_.push_back(std::move(h));
+  for (std::size_t l = 0; l < loops_.size(); ++l) {
+    auto& loop = loops_[l];
+    ABLMG_REQUIRE(loop.points.size() >= 3,
+                  "domain: " << loopName(l) << " " << l << " has " << loop.points.size() << " points (need at least 3)");
+    if (loop.tags.empty()) loop.tags.assign(loop.points.size(), 1);
+    ABLMG_REQUIRE(loop.tags.size() == loop.points.size(),
+                  "domain: loop " << l << " has " << loop.points.size() << " points but " << loop.tags.size() << " segment tags");
+    for (std::size_t k = 0; k < loop.points.size(); ++k)
+      ABLMG_REQUIRE(std::isfinite(loop.points[k].x()) && std::isfinite(loop.points[k].y()),
+                    "domain: loop " << l << " point " << k << " has a non-finite coordinate");
+    const double a = loopSignedArea(loop);
+    const bool wantCcw = (l == 0);
+    if ((a > 0) != wantCcw && a != 0) reverseLoop(loop);
+  }
+  validate();
+}
+
+Domain Domain::rectangle(double x0, double y0, double x1, double y1) {
+  ABLMG_REQUIRE(std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1) && x1 > x0 && y1 > y0,
+                "domain: rectangle needs finite x0 < x1 and y0 < y1 (got " << x0 << "," << y0 << "," << x1 << "," << y1 << ")");
+  BoundaryLoop loop;
+  loop.points = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  loop.tags = {1, 2, 3, 4};
+  return Domain(std::move(loop));
+}
+
+Domain Domain::disk(Vec2 centre, double radius, int samples) {
+  ABLMG_REQUIRE(std::isfinite(radius) && radius > 0, "domain: disk radius must be positive (got " << radius << ")");
+  ABLMG_REQUIRE(samples >= 8 && samples <= 10000000, "domain: disk samples must be in [8, 1e7] (got " << samples << ")");
+  BoundaryLoop loop;
+  loop.smooth = true;
+  for (int k = 0; k < samples; ++k) {
+    const double t = 2 * std::numbers::pi * k / samples;
+    loop.points.emplace_back(centre.x() + radius * std::cos(t), centre.y() + radius * std::sin(t));
+  }
+  loop.tags.assign(samples, 1);
+  return Domain(std::move(loop));
+}
+
+double Domain::area() const {
+  double a = 0;
+  for (const auto& loop : loops_) a += loopSignedArea(loop);  // holes are clockwise: negative
+  return a;
+}
+
+std::pair<Vec2, Vec2> Domain::boundingBox() const {
+  Vec2 lo = outer().points[0], hi = lo;
+  for (const auto& p : outer().points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+bool Domain::contains(const Vec2& p) const {
+  // Winding number by upward/downward crossings of the ray from p towards +x; exact tests.
+  int winding = 0;
+  for (const auto& loop : loops_) {
+    const std::size_t n = loop.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2& a = loop.points[k];
+      const Vec2& b = loop.points[(k + 1) % n];
+      if (std::max(a.x(), b.x()) < p.x()) continue;
+      const bool up = a.y() <= p.y() && p.y() < b.y();
+      const bool down = b.y() <= p.y() && p.y() < a.y();
+      if (!up && !down) {
+        if (a.y() == p.y() && b.y() == p.y() && std::min(a.x(), b.x()) <= p.x()) return true;  // on a horizontal segment
+        continue;
+      }
+      const int o = orient2d(a, b, p);
+      if (o == 0) return true;  // on the boundary
+      if (up && o > 0) ++winding;
+      if (down && o < 0) --winding;
+    }
+  }
+  return winding != 0;
+}
+
+double Domain::distanceToBoundary(const Vec2& p) const {
+  double best = INFINITY;
+  for (const auto& loop : loops_) {
+    const std::size_t n = loop.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2& a = loop.points[k];
+      const Vec2 ab = loop.points[(k + 1) % n] - a;
+      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      best = std::min(best, (a + t * ab - p).norm());
+    }
+  }
+  return best;
+}
+
+std::vector<int> Domain::corners(int l) const {
+  const BoundaryLoop& loop = loops_.at(l);
+  const int n = static_cast<int>(loop.points.size());
+  std::vector<int> out;
+  for (int k = 0; k < n; ++k) {
+    if (!loop.smooth) {
+      out.push_back(k);
+      continue;
+    }
+    const Vec2 din = loop.points[k] - loop.points[(k + n - 1) % n];
+    const Vec2 dout = loop.points[(k + 1) % n] - loop.points[k];
+    const double turn = std::atan2(std::abs(cross(din, dout)), din.dot(dout));
+    const bool tagChange = loop.tags[k] != loop.tags[(k + n - 1) % n];
+    if (tagChange || turn > std::numbers::pi / 6) out.push_back(k);
+  }
+  return out;
+}
+
+void Domain::validate() const {
+  struct Seg {
+    double xmin, xmax;
+    int loop, index;
+    Vec2 a, b;
+  };
+  std::vector<Seg> segs;
+  for (std::size_t l = 0; l < loops_.size(); ++l) {
+    const auto& pts = loops_[l].points;
+    const std::size_t n = pts.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2& a = pts[k];
+      const Vec2& b = pts[(k + 1) % n];
+      ABLMG_REQUIRE(a != b, "domain: " << loopName(l) << " " << l << " segment " << k << " has zero length (point ("
+                                       << a.x() << ", " << a.y() << ") repeated)");
+      segs.push_back({std::min(a.x(), b.x()), std::max(a.x(), b.x()), int(l), int(k), a, b});
+    }
+  }
+  // Sweep in x: only segments whose x-ranges overlap are tested against each other.
+  std::vector<int> order(segs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+  std::sort(order.begin(), order.end(), [&](int i, int j) { return segs[i].xmin < segs[j].xmin || (segs[i].xmin == segs[j].xmin && i < j); });
+  for (std::size_t oi = 0; oi < order.size(); ++oi) {
+    const Seg& s = segs[order[oi]];
+    for (std::size_t oj = oi + 1; oj < order.size() && segs[order[oj]].xmin <= s.xmax; ++oj) {
+      const Seg& t = segs[order[oj]];
+      const int n = int(loops_[s.loop].points.size());
+      const bool neighbours = s.loop == t.loop && ((s.index + 1) % n == t.index || (t.index + 1) % n == s.index);
+      bool bad;
+      if (neighbours) {
+        // consecutive segments share one point; they must not fold back onto each other
+        bad = segmentsCross(s.a, s.b, t.a, t.b);
+      } else {
+        bad = segmentsIntersect(s.a, s.b, t.a, t.b);
+      }
+      ABLMG_REQUIRE(!bad, "domain: " << loopName(s.loop) << " " << s.loop << " segment " << s.index << " intersects "
+                                     << loopName(t.loop) << " " << t.loop << " segment " << t.index
+                                     << " (self-intersecting or touching boundary)");
+    }
+  }
+  // Holes must lie inside the outer loop (no crossings, so testing one point suffices).
+  const Domain outerOnly = [&] {
+    Domain d;
+    d.loops_ = {loops_[0]};
+    return d;
+  }();
+  for (std::size_t l = 1; l < loops_.size(); ++l)
+    ABLMG_REQUIRE(outerOnly.contains(loops_[l].points[0]), "domain: hole " << l << " lies outside the outer loop");
+  ABLMG_REQUIRE(area() > 0, "domain: enclosed area is not positive (" << area() << ")");
+}
+
+} // namespace ablmg

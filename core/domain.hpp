@@ -1,0 +1,62 @@
+#pragma once
+/// Domain: a planar straight-line graph (PSLG) made of closed boundary loops (paper §3.1).
+///
+/// The outer loop is counter-clockwise and holes are clockwise (the constructor reorients
+/// loops given the other way). Segment k of a loop joins points[k] to points[(k+1) % n] and
+/// carries the integer reference tag tags[k] (kept on the output's boundary edges).
+///
+/// A loop may be `smooth`: its points then sample a smooth curve (a circle given as a
+/// polygon of many points), and only its `corners` (points where the tag changes or the
+/// boundary turns by more than 30°) are fixed mesh vertices; the mesher places its own
+/// boundary nodes along the polyline. Otherwise every point is a corner and a mesh vertex.
+/// Units: the coordinates' own.
+#include "core/vec2.hpp"
+
+#include <string>
+#include <vector>
+
+namespace ablmg {
+
+struct BoundaryLoop {
+  std::vector<Vec2> points;
+  std::vector<int> tags;  ///< one per segment; empty = all 1
+  bool smooth = false;
+};
+
+class Domain {
+public:
+  Domain() = default;
+  /// Builds and validates (see validate()). Throws InputError naming the bad loop/segment.
+  Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes = {});
+
+  /// Rectangle [x0,x1]×[y0,y1], tags 1 (bottom), 2 (right), 3 (top), 4 (left).
+  static Domain rectangle(double x0, double y0, double x1, double y1);
+  /// Disk sampled by `samples` points on a smooth loop, tag 1.
+  static Domain disk(Vec2 centre, double radius, int samples = 2048);
+
+  const BoundaryLoop& outer() const { return loops_.front(); }
+  /// All loops: [0] is the outer loop, then the holes.
+  const std::vector<BoundaryLoop>& loops() const { return loops_; }
+
+  /// Area enclosed (outer minus holes), exact up to round-off for the polygon.
+  double area() const;
+  /// Bounding box of the outer loop: {min, max}.
+  std::pair<Vec2, Vec2> boundingBox() const;
+  /// Point-in-domain test (strictly inside the outer loop and outside every hole; points on
+  /// the boundary count as inside). Uses robust orientation.
+  bool contains(const Vec2& p) const;
+  /// Euclidean distance from p to the nearest boundary segment.
+  double distanceToBoundary(const Vec2& p) const;
+  /// Index lists of the corner points of loop l (all points unless the loop is smooth).
+  std::vector<int> corners(int l) const;
+
+  /// Rejects: loops with < 3 points, non-finite coordinates, zero-length segments, duplicate
+  /// points, self-intersections or intersections between loops, holes outside the outer loop,
+  /// tag vectors of the wrong size. The message names loop and segment index.
+  void validate() const;
+
+private:
+  std::vector<BoundaryLoop> loops_;
+};
+
+} // namespace ablmg

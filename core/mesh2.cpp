@@ -1,0 +1,192 @@
+#include "core/mesh2.hpp"
+
+#include "core/error.hpp"
+#include "core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace ablmg {
+namespace {
+
+/// Directed half-edge keyed for sorting: (min, max, direction flag, triangle).
+struct HalfEdge {
+  int lo, hi;
+  int forward;  ///< 1 if the triangle runs lo→hi, 0 if hi→lo
+  int tri;
+  bool operator<(const HalfEdge& o) const {
+    if (lo != o.lo) return lo < o.lo;
+    if (hi != o.hi) return hi < o.hi;
+    if (forward != o.forward) return forward < o.forward;
+    return tri < o.tri;
+  }
+};
+
+std::vector<HalfEdge> halfEdges(const Mesh2& m) {
+  std::vector<HalfEdge> h;
+  h.reserve(3 * m.triangles.size());
+  for (int t = 0; t < m.numTriangles(); ++t) {
+    const auto& tr = m.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tr[k], b = tr[(k + 1) % 3];
+      h.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : 0, t});
+    }
+  }
+  std::sort(h.begin(), h.end());
+  return h;
+}
+
+} // namespace
+
+double Mesh2::triangleArea(int t) const {
+  const auto& tr = triangles[t];
+  return 0.5 * signedArea2(vertices[tr[0]], vertices[tr[1]], vertices[tr[2]]);
+}
+
+double Mesh2::area() const {
+  double a = 0;
+  for (int t = 0; t < numTriangles(); ++t) a += triangleArea(t);
+  return a;
+}
+
+MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTolerance) const {
+  MeshValidation r;
+  auto problem = [&](const std::string& s) {
+    if (r.ok) r.firstProblem = s;
+    r.ok = false;
+  };
+  const int nv = numVertices();
+  for (int v = 0; v < nv; ++v)
+    if (!std::isfinite(vertices[v].x()) || !std::isfinite(vertices[v].y())) {
+      problem("vertex " + std::to_string(v) + " has a non-finite coordinate");
+      return r;
+    }
+  if (triangles.empty()) {
+    problem("the mesh has no triangles");
+    return r;
+  }
+  std::vector<char> used(nv, 0);
+  for (int t = 0; t < numTriangles(); ++t) {
+    const auto& tr = triangles[t];
+    for (int k = 0; k < 3; ++k)
+      if (tr[k] < 0 || tr[k] >= nv) {
+        problem("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(tr[k]) + " out of range");
+        return r;
+      }
+    for (int k = 0; k < 3; ++k) used[tr[k]] = 1;
+    if (orient2d(vertices[tr[0]], vertices[tr[1]], vertices[tr[2]]) <= 0) {
+      ++r.invertedTriangles;
+      std::ostringstream os;
+      os << "triangle " << t << " (" << tr[0] << ", " << tr[1] << ", " << tr[2] << ") is inverted or degenerate";
+      problem(os.str());
+    }
+    r.area += triangleArea(t);
+  }
+  for (int v = 0; v < nv; ++v)
+    if (!used[v]) {
+      ++r.unusedVertices;
+      problem("vertex " + std::to_string(v) + " is used by no triangle");
+    }
+  // Boundary edges as directed pairs, sorted for lookup.
+  std::vector<std::array<int, 2>> bnd;
+  bnd.reserve(boundaryEdges.size());
+  for (const auto& e : boundaryEdges) {
+    if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
+      problem("boundary edge (" + std::to_string(e.a) + ", " + std::to_string(e.b) + ") is out of range or degenerate");
+      return r;
+    }
+    bnd.push_back({e.a, e.b});
+  }
+  std::sort(bnd.begin(), bnd.end());
+  for (std::size_t i = 1; i < bnd.size(); ++i)
+    if (bnd[i] == bnd[i - 1]) problem("boundary edge (" + std::to_string(bnd[i][0]) + ", " + std::to_string(bnd[i][1]) + ") is listed twice");
+  std::vector<char> bndUsed(bnd.size(), 0);
+  const auto h = halfEdges(*this);
+  for (std::size_t i = 0; i < h.size();) {
+    std::size_t j = i;
+    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    const std::size_t count = j - i;
+    const std::string name = "edge (" + std::to_string(h[i].lo) + ", " + std::to_string(h[i].hi) + ")";
+    if (count == 2 && h[i].forward != h[i + 1].forward) {
+      // interior edge, consistently oriented
+    } else if (count == 1) {
+      const std::array<int, 2> dir = h[i].forward ? std::array<int, 2>{h[i].lo, h[i].hi} : std::array<int, 2>{h[i].hi, h[i].lo};
+      const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
+      if (it == bnd.end() || *it != dir) {
+        ++r.openEdges;
+        problem(name + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
+      } else {
+        bndUsed[it - bnd.begin()] = 1;
+      }
+    } else {
+      ++r.nonManifoldEdges;
+      problem(name + " lies in " + std::to_string(count) + " triangles" + (count == 2 ? " with the same orientation" : ""));
+    }
+    i = j;
+  }
+  for (std::size_t k = 0; k < bnd.size(); ++k)
+    if (!bndUsed[k]) {
+      ++r.openEdges;
+      problem("boundary edge (" + std::to_string(bnd[k][0]) + ", " + std::to_string(bnd[k][1]) +
+              ") is not the edge of exactly one triangle on its left");
+    }
+  if (expectedArea) {
+    const double rel = std::abs(r.area - *expectedArea) / std::abs(*expectedArea);
+    if (!(rel <= areaTolerance)) {
+      std::ostringstream os;
+      os << "mesh area " << r.area << " differs from the domain's " << *expectedArea << " (relative " << rel << ")";
+      problem(os.str());
+    }
+  }
+  return r;
+}
+
+void Mesh2::requireValid(const std::string& what, std::optional<double> expectedArea, double areaTolerance) const {
+  const MeshValidation r = validate(expectedArea, areaTolerance);
+  if (!r.ok) ABLMG_FAIL(what << ": invalid mesh: " << r.firstProblem);
+}
+
+std::vector<std::array<int, 2>> Mesh2::edges() const {
+  std::vector<std::array<int, 2>> e;
+  e.reserve(3 * triangles.size());
+  for (const auto& tr : triangles)
+    for (int k = 0; k < 3; ++k) e.push_back({std::min(tr[k], tr[(k + 1) % 3]), std::max(tr[k], tr[(k + 1) % 3])});
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
+}
+
+std::vector<std::array<int, 3>> Mesh2::triangleNeighbours() const {
+  std::vector<std::array<int, 3>> nb(triangles.size(), {-1, -1, -1});
+  const auto h = halfEdges(*this);
+  auto localEdge = [&](int t, int lo, int hi) {
+    const auto& tr = triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tr[(k + 1) % 3], b = tr[(k + 2) % 3];  // edge opposite vertex k
+      if (std::min(a, b) == lo && std::max(a, b) == hi) return k;
+    }
+    return -1;
+  };
+  for (std::size_t i = 0; i + 1 < h.size(); ++i)
+    if (h[i].lo == h[i + 1].lo && h[i].hi == h[i + 1].hi) {
+      nb[h[i].tri][localEdge(h[i].tri, h[i].lo, h[i].hi)] = h[i + 1].tri;
+      nb[h[i + 1].tri][localEdge(h[i + 1].tri, h[i].lo, h[i].hi)] = h[i].tri;
+    }
+  return nb;
+}
+
+Mesh2::VertexTriangles Mesh2::vertexTriangles() const {
+  VertexTriangles vt;
+  vt.offsets.assign(vertices.size() + 1, 0);
+  for (const auto& tr : triangles)
+    for (int k = 0; k < 3; ++k) ++vt.offsets[tr[k] + 1];
+  for (std::size_t v = 0; v < vertices.size(); ++v) vt.offsets[v + 1] += vt.offsets[v];
+  vt.ids.resize(vt.offsets.back());
+  std::vector<int> fill(vt.offsets.begin(), vt.offsets.end() - 1);
+  for (int t = 0; t < numTriangles(); ++t)
+    for (int k = 0; k < 3; ++k) vt.ids[fill[triangles[t][k]]++] = t;
+  return vt;
+}
+
+} // namespace ablmg

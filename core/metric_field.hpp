@@ -1,0 +1,79 @@
+#pragma once
+/// MetricField: the prescribed Riemannian metric M(x) over the plane (paper §2).
+///
+/// Implementations:
+///  - ConstantMetricField: one tensor everywhere.
+///  - AnalyticMetricField: muparser expressions in x, y giving either (h1, h2, theta) or
+///    (m11, m12, m22) (eq. 1 or 2). Expressions are checked when the field is built (unknown
+///    variables, syntax) and every evaluation is checked for SPD (the error names the point).
+///  - BackgroundMetricField: per-vertex tensors on a triangle mesh, interpolated
+///    log-Euclidean with barycentric weights (interpolating log M keeps the result SPD and
+///    does not inflate sizes the way linear interpolation of M⁻¹ or M does). Point location:
+///    grid start + walk, hint-accelerated. Outside the mesh: nearest-triangle extrapolation.
+///
+/// Thread safety: `at()` of an AnalyticMetricField is not thread-safe (muparser state);
+/// call `evaluate()` from one thread. The others are read-only and thread-safe.
+#include "core/mesh2.hpp"
+#include "core/metric2.hpp"
+#include "core/point_locator.hpp"
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ablmg {
+
+class MetricField {
+public:
+  virtual ~MetricField() = default;
+  /// M at point p.
+  virtual Metric2 at(const Vec2& p) const = 0;
+  /// M at many points (out.size() == points.size()); override for speed.
+  virtual void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const;
+  /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
+  virtual bool isConstant() const { return false; }
+};
+
+class ConstantMetricField final : public MetricField {
+public:
+  explicit ConstantMetricField(const Metric2& m) : m_(m) {}
+  Metric2 at(const Vec2&) const override { return m_; }
+  bool isConstant() const override { return true; }
+
+private:
+  Metric2 m_;
+};
+
+class AnalyticMetricField final : public MetricField {
+public:
+  enum class Form { Sizes, Tensor };  ///< (h1, h2, theta) or (m11, m12, m22)
+  /// Throws InputError naming `source` (e.g. "config.json: metric.h1") on a bad expression.
+  AnalyticMetricField(Form form, const std::string& e1, const std::string& e2, const std::string& e3,
+                      const std::string& source = "metric");
+  ~AnalyticMetricField() override;
+  Metric2 at(const Vec2& p) const override;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+class BackgroundMetricField final : public MetricField {
+public:
+  /// mesh must be valid; metrics.size() == mesh.numVertices(). Copies both.
+  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics);
+  Metric2 at(const Vec2& p) const override;
+  void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
+  const Mesh2& mesh() const { return mesh_; }
+  const std::vector<Metric2>& metrics() const { return metrics_; }
+
+private:
+  Metric2 interpolate(const PointLocator::Location& loc) const;
+  Mesh2 mesh_;
+  std::vector<Metric2> metrics_;
+  std::vector<Metric2> logs_;  ///< log M per vertex, precomputed
+  std::unique_ptr<PointLocator> locator_;
+};
+
+} // namespace ablmg

@@ -1,0 +1,105 @@
+#include "core/point_locator.hpp"
+
+#include "core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ablmg {
+
+PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(mesh.triangleNeighbours()) {
+  Vec2 lo = mesh.vertices.at(0), hi = lo;
+  for (const auto& v : mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  const Vec2 ext = (hi - lo).cwiseMax(1e-300);
+  const double cells = std::max(1.0, mesh.numTriangles() / 2.0);
+  const double side = std::sqrt(ext.x() * ext.y() / cells);
+  nx_ = std::clamp(int(ext.x() / side) + 1, 1, 4096);
+  ny_ = std::clamp(int(ext.y() / side) + 1, 1, 4096);
+  lo_ = lo;
+  cellSize_ = Vec2(ext.x() / nx_, ext.y() / ny_);
+  cellTriangle_.assign(std::size_t(nx_) * ny_, -1);
+  for (int t = 0; t < mesh.numTriangles(); ++t) {
+    const auto& tr = mesh.triangles[t];
+    const Vec2 c = (mesh.vertices[tr[0]] + mesh.vertices[tr[1]] + mesh.vertices[tr[2]]) / 3.0;
+    const int i = std::clamp(int((c.x() - lo_.x()) / cellSize_.x()), 0, nx_ - 1);
+    const int j = std::clamp(int((c.y() - lo_.y()) / cellSize_.y()), 0, ny_ - 1);
+    int& slot = cellTriangle_[std::size_t(j) * nx_ + i];
+    if (slot < 0) slot = t;
+  }
+}
+
+int PointLocator::startTriangle(const Vec2& p) const {
+  const int i0 = std::clamp(int(std::floor((p.x() - lo_.x()) / cellSize_.x())), 0, nx_ - 1);
+  const int j0 = std::clamp(int(std::floor((p.y() - lo_.y()) / cellSize_.y())), 0, ny_ - 1);
+  for (int ring = 0; ring < std::max(nx_, ny_); ++ring)
+    for (int j = j0 - ring; j <= j0 + ring; ++j)
+      for (int i = i0 - ring; i <= i0 + ring; ++i) {
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+        if (std::max(std::abs(i - i0), std::abs(j - j0)) != ring) continue;
+        const int t = cellTriangle_[std::size_t(j) * nx_ + i];
+        if (t >= 0) return t;
+      }
+  return 0;
+}
+
+PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
+  int t = (hint >= 0 && hint < mesh_.numTriangles()) ? hint : startTriangle(p);
+  int came = -1;
+  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
+  bool restarted = false;
+  for (int step = 0;; ++step) {
+    if (step > cap) {
+      // cycling walk (possible on non-Delaunay meshes): restart once from the grid, then scan
+      if (!restarted) {
+        restarted = true;
+        t = startTriangle(p);
+        came = -1;
+        step = 0;
+        continue;
+      }
+      for (int s = 0; s < mesh_.numTriangles(); ++s) {
+        const auto& tr = mesh_.triangles[s];
+        bool in = true;
+        for (int k = 0; k < 3 && in; ++k)
+          in = orient2d(mesh_.vertices[tr[(k + 1) % 3]], mesh_.vertices[tr[(k + 2) % 3]], p) >= 0;
+        if (in) {
+          t = s;
+          break;
+        }
+      }
+      break;
+    }
+    const auto& tr = mesh_.triangles[t];
+    int exit = -1;
+    for (int k = 0; k < 3; ++k) {
+      const int e = (k + step) % 3;  // rotate the first edge tested: avoids systematic cycles
+      if (neighbours_[t][e] == came && came >= 0) continue;
+      if (orient2d(mesh_.vertices[tr[(e + 1) % 3]], mesh_.vertices[tr[(e + 2) % 3]], p) < 0) {
+        exit = e;
+        break;
+      }
+    }
+    if (exit < 0) break;                       // p is inside (or on) triangle t
+    if (neighbours_[t][exit] < 0) break;       // p is outside the mesh, beyond this boundary edge
+    came = t;
+    t = neighbours_[t][exit];
+  }
+  Location loc;
+  loc.triangle = t;
+  const auto& tr = mesh_.triangles[t];
+  const Vec2& a = mesh_.vertices[tr[0]];
+  const Vec2& b = mesh_.vertices[tr[1]];
+  const Vec2& c = mesh_.vertices[tr[2]];
+  const double area2 = signedArea2(a, b, c);
+  double w[3] = {signedArea2(p, b, c) / area2, signedArea2(a, p, c) / area2, signedArea2(a, b, p) / area2};
+  loc.inside = w[0] >= -1e-12 && w[1] >= -1e-12 && w[2] >= -1e-12;
+  double s = 0;
+  for (double& x : w) s += (x = std::max(0.0, x));
+  for (int k = 0; k < 3; ++k) loc.bary[k] = s > 0 ? w[k] / s : 1.0 / 3.0;
+  return loc;
+}
+
+} // namespace ablmg

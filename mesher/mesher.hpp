@@ -1,0 +1,38 @@
+#pragma once
+/// ablmg's mesher API — the one header a solver calls in a loop (the libmmg2d.h of ablmg).
+///
+///   Domain + MetricField ─ placeNodes (§3) ─▶ PlacementResult ─ connect (§4) ─▶ Mesh2
+///
+/// meshDomain() runs both stages, validates the mesh (Mesh2::validate against the domain's
+/// area) and returns it with statistics. It never returns an invalid mesh: it throws
+/// ablmg::Error if repair fails, ablmg::InputError for bad input (non-SPD metric, a metric
+/// asking for more than maxNodes nodes, ...). It does not print, open files or exit.
+#include "core/domain.hpp"
+#include "core/mesh2.hpp"
+#include "core/metric_field.hpp"
+#include "mesher/connect.hpp"
+#include "mesher/place_nodes.hpp"
+
+namespace ablmg::mesher {
+
+struct MeshOptions {
+  PlacementOptions placement;
+  ConnectOptions connect;
+};
+
+struct MeshStats {
+  PlacementStats placement;
+  ConnectStats connect;
+  double secondsValidate = 0;
+};
+
+struct MeshResult {
+  Mesh2 mesh;                  ///< valid; boundary edges carry the domain's segment tags
+  std::vector<Metric2> metric; ///< the prescribed metric at each mesh vertex
+  MeshStats stats;
+};
+
+/// Meshes `domain` so that edges have unit length in `metric` (paper §3–4).
+MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options = {});
+
+} // namespace ablmg::mesher

@@ -1,0 +1,41 @@
+#pragma once
+/// The output of node placement (paper §3) and input of the connection (paper §4).
+///
+/// NodeSet: node positions (structure of arrays) with the geometric entity each node lives on
+/// (paper §3.1: vertices, edges, faces). AdjacencyLists: CSR lists of neighbours within the
+/// adjacency radius (1.7σ in the metric sense, §3.3).
+#include "core/mesh2.hpp"
+#include "core/metric2.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace ablmg::mesher {
+
+enum class NodeKind : std::uint8_t {
+  Vertex,    ///< a corner of the PSLG: fixed
+  Segment,   ///< on a boundary loop between corners: slides along it
+  Interior   ///< inside the domain: moves freely, never leaves it
+};
+
+struct NodeSet {
+  std::vector<Vec2> positions;
+  std::vector<NodeKind> kinds;
+  std::vector<int> loops;   ///< boundary loop index for Vertex/Segment nodes, −1 for Interior
+  std::vector<double> arc;  ///< for boundary nodes: position along its loop as a point index + fraction
+                            ///< (segment k at fraction t ↦ k + t), −1 for Interior
+  int size() const { return int(positions.size()); }
+};
+
+/// Symmetric neighbour lists in compressed rows: neighbours of i are ids[offsets[i] .. offsets[i+1]).
+/// Invariants: symmetric (j ∈ adj(i) ⇔ i ∈ adj(j)); each row sorted by id; no self-loops.
+struct AdjacencyLists {
+  std::vector<int> offsets{0};
+  std::vector<int> ids;
+  int size() const { return int(offsets.size()) - 1; }
+  std::span<const int> neighbours(int i) const { return {ids.data() + offsets[i], ids.data() + offsets[i + 1]}; }
+  bool isSymmetric() const;
+};
+
+} // namespace ablmg::mesher

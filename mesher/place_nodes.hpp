@@ -1,0 +1,53 @@
+#pragma once
+/// Node placement by elliptical bubble simulation (paper §3): the driver.
+///
+///   initial placement (§3.1) → [ dynamics, eq. (5)–(8) (§3.2) ↔ population control, eq. (9)
+///   (§3.4) ] with adjacency lists (§3.3) → stop rule → PlacementResult
+///
+/// Deterministic: same domain, metric and options (seed) ⇒ bit-identical result, for any
+/// number of threads.
+#include "core/domain.hpp"
+#include "core/metric_field.hpp"
+#include "mesher/node_set.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace ablmg::mesher {
+
+struct PlacementOptions {
+  double k0 = 1.0;            ///< force constant of eq. (7), paper §6
+  double mass = 1.0;          ///< m of eq. (5), paper §6
+  double damping = 3.8429;    ///< c of eq. (5), paper §6
+  double timeStep = 0.02;     ///< Δt of the forward-Euler step, paper §6 (in units where l0 = 1)
+  double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
+  int adjacencyRefresh = 10;  ///< refresh the lists every k steps (§3.3)
+  int maxSteps = 400;         ///< cap on dynamics steps; stats.hitStepCap says if it was hit
+  double tolerance = 1e-3;    ///< stop when the largest velocity (metric units per unit time) falls below this
+  long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
+  std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
+  int threads = 0;            ///< 0 = OpenMP default
+  bool bubblesOnly = false;   ///< informational: callers that only want the packing
+};
+
+struct PlacementStats {
+  long predictedNodes = 0;    ///< N* = (2/√3) ∫ √det M dA (+ boundary correction), see place_nodes.cpp
+  long initialNodes = 0, finalNodes = 0;
+  long inserted = 0, deleted = 0;
+  int steps = 0;
+  bool hitStepCap = false;
+  double initialResidual = 0, finalResidual = 0;  ///< largest bubble velocity
+  double secondsInitial = 0, secondsDynamics = 0, secondsAdjacency = 0, secondsPopulation = 0;
+};
+
+struct PlacementResult {
+  NodeSet nodes;
+  AdjacencyLists adjacency;            ///< final lists, radius adjacencyRadius (metric sense)
+  std::vector<Metric2> metrics;        ///< the metric at each node's final position
+  std::vector<BoundaryEdge> boundaryEdges;  ///< node ids along every loop, domain on the left, with segment tags
+  PlacementStats stats;
+};
+
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {});
+
+} // namespace ablmg::mesher

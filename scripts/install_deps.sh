@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs ablmg's build and test dependencies from Debian 12 packages. Idempotent:
+# packages already present are not downloaded again; `apt-get update` runs only when a
+# package is missing. Run as root (or with sudo).
+set -euo pipefail
+packages=(
+  cmake g++ make pkg-config
+  libeigen3-dev        # dense 2x2/3x3 algebra, sparse matrices (core, fem, adapt)
+  libsuitesparse-dev   # CHOLMOD supernodal Cholesky for the P1 systems (fem)
+  nlohmann-json3-dev   # JSON configuration and reports (cli)
+  libvtk9-dev          # .vtu output through VTK's XML writer (io)
+  libgtest-dev         # unit tests
+  libbenchmark-dev     # bench/
+  libmuparser-dev      # metric and surface expressions in x,y / u,v (core)
+  libcairo2-dev        # PNG pictures of bubbles, meshes, convergence plots (io)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -q
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
