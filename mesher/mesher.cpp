@@ -1,0 +1,38 @@
+#include "mesher/mesher.hpp"
+
+#include "core/error.hpp"
+
+#include <chrono>
+
+namespace ablmg::mesher {
+namespace {
+
+/// Area the mesh must cover: the domain's for polygonal loops; for smooth loops the mesh's
+/// boundary is the polygon through the boundary nodes, so that polygon's area is used.
+double expectedArea(const Domain& domain, const Mesh2& mesh) {
+  bool anySmooth = false;
+  for (const auto& loop : domain.loops()) anySmooth = anySmooth || loop.smooth;
+  if (!anySmooth) return domain.area();
+  double a = 0;
+  for (const auto& e : mesh.boundaryEdges) a += 0.5 * cross(mesh.vertices[e.a], mesh.vertices[e.b]);
+  return a;
+}
+
+} // namespace
+
+MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
+  PlacementResult placement = placeNodes(domain, metric, options.placement);
+  ConnectResult connected = connect(placement, domain, options.connect);
+
+  MeshResult result;
+  result.stats.placement = placement.stats;
+  result.stats.connect = connected.stats;
+  const auto t0 = std::chrono::steady_clock::now();
+  connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
+  result.stats.secondsValidate = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.mesh = std::move(connected.mesh);
+  result.metric = std::move(placement.metrics);
+  return result;
+}
+
+} // namespace ablmg::mesher

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The whole test suite, set-up included (what CI runs through .ci/run):
+#   1. install the Debian packages (idempotent),
+#   2. Release build + all CTest tests (unit tests, CLI tests, examples at small size),
+#   3. an AddressSanitizer + UndefinedBehaviorSanitizer build running the unit tests
+#      (set ABLMG_SKIP_SANITIZE=1 to skip it locally).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install_deps.sh
+jobs=$(nproc)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DABLMG_BUILD_BENCH=ON
+cmake --build build -j"$jobs"
+ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
+if [ "${ABLMG_SKIP_SANITIZE:-0}" != "1" ]; then
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DABLMG_SANITIZE=ON -DABLMG_BUILD_BENCH=OFF
+  cmake --build build-asan -j"$jobs" --target test_core test_io test_mesher test_fem test_adapt 2>/dev/null ||
+    cmake --build build-asan -j"$jobs"
+  ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -L "core|io|mesher|fem|adapt"
+fi

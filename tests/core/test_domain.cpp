@@ -1,0 +1,73 @@
+#include "core/domain.hpp"
+#include "core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace ablmg;
+
+namespace {
+BoundaryLoop square(double x0, double y0, double s, bool ccw = true) {
+  BoundaryLoop l;
+  l.points = {{x0, y0}, {x0 + s, y0}, {x0 + s, y0 + s}, {x0, y0 + s}};
+  if (!ccw) std::reverse(l.points.begin(), l.points.end());
+  return l;
+}
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
+TEST(Domain, AreaWithHoleAndOrientation) {
+  const Domain d(square(0, 0, 4, /*ccw=*/false), {square(1, 1, 1, /*ccw=*/true)});
+  EXPECT_DOUBLE_EQ(d.area(), 15.0);
+  EXPECT_TRUE(d.contains({0.5, 0.5}));
+  EXPECT_FALSE(d.contains({1.5, 1.5}));   // in the hole
+  EXPECT_TRUE(d.contains({1.0, 1.5}));    // on the hole's boundary
+  EXPECT_TRUE(d.contains({4.0, 2.0}));    // on the outer boundary
+  EXPECT_FALSE(d.contains({4.0001, 2.0}));
+  EXPECT_NEAR(d.distanceToBoundary({0.5, 2.0}), 0.5, 1e-15);
+}
+
+TEST(Domain, TagsFollowReorientation) {
+  BoundaryLoop l = square(0, 0, 1, false);  // clockwise: (0,0) (0,1) (1,1) (1,0)
+  l.tags = {3, 2, 1, 4};                    // top, right, bottom, left
+  const Domain d(l);
+  const auto& o = d.outer();
+  for (std::size_t k = 0; k < 4; ++k) {
+    const Vec2 mid = 0.5 * (o.points[k] + o.points[(k + 1) % 4]);
+    const int expect = mid.y() == 0 ? 1 : mid.x() == 1 ? 2 : mid.y() == 1 ? 3 : 4;
+    EXPECT_EQ(o.tags[k], expect) << "segment " << k;
+  }
+}
+
+TEST(Domain, ValidationNamesTheProblem) {
+  BoundaryLoop bow;  // self-intersecting bow tie
+  bow.points = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+  EXPECT_NE(errorOf([&] { Domain d(bow); }).find("intersects"), std::string::npos);
+  BoundaryLoop dup = square(0, 0, 1);
+  dup.points.insert(dup.points.begin() + 1, dup.points[1]);
+  EXPECT_NE(errorOf([&] { Domain d(dup); }).find("zero length"), std::string::npos);
+  EXPECT_NE(errorOf([&] { Domain d(square(0, 0, 1), {square(5, 5, 1)}); }).find("outside"), std::string::npos);
+  EXPECT_NE(errorOf([&] { Domain d(square(0, 0, 4), {square(3, 1, 2)}); }).find("intersects"), std::string::npos);
+  BoundaryLoop two;
+  two.points = {{0, 0}, {1, 0}};
+  EXPECT_NE(errorOf([&] { Domain d(two); }).find("at least 3"), std::string::npos);
+  BoundaryLoop nan = square(0, 0, 1);
+  nan.points[2].x() = NAN;
+  EXPECT_NE(errorOf([&] { Domain d(nan); }).find("non-finite"), std::string::npos);
+}
+
+TEST(Domain, DiskIsSmoothWithoutCorners) {
+  const Domain d = Domain::disk({0, 0}, 10.0, 1024);
+  EXPECT_TRUE(d.corners(0).empty());
+  EXPECT_NEAR(d.area(), 100 * std::numbers::pi, 100 * std::numbers::pi * 1e-4);
+  EXPECT_EQ(Domain::rectangle(0, 0, 1, 1).corners(0).size(), 4u);
+}

@@ -1,0 +1,92 @@
+#include "core/error.hpp"
+#include "core/metric_field.hpp"
+#include "core/point_locator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace ablmg;
+
+namespace {
+/// n×n grid of the unit square, diagonals alternating, interior vertices perturbed.
+Mesh2 grid(int n, std::uint64_t seed) {
+  Mesh2 m;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> jit(-0.3 / n, 0.3 / n);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      Vec2 p(double(i) / n, double(j) / n);
+      if (i > 0 && j > 0 && i < n && j < n) p += Vec2(jit(rng), jit(rng));
+      m.vertices.push_back(p);
+    }
+  auto id = [n](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if ((i + j) % 2) {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+        m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        m.triangles.push_back({id(i, j), id(i + 1, j), id(i, j + 1)});
+        m.triangles.push_back({id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  for (int i = 0; i < n; ++i) {
+    m.boundaryEdges.push_back({id(i, 0), id(i + 1, 0), 1});
+    m.boundaryEdges.push_back({id(n, i), id(n, i + 1), 2});
+    m.boundaryEdges.push_back({id(i + 1, n), id(i, n), 3});
+    m.boundaryEdges.push_back({id(0, i + 1), id(0, i), 4});
+  }
+  return m;
+}
+} // namespace
+
+TEST(PointLocator, FindsContainingTriangleAndReproducesLinearFunctions) {
+  const Mesh2 m = grid(40, 1);
+  ASSERT_TRUE(m.validate(1.0).ok);
+  const PointLocator loc(m);
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(0, 1);
+  int hint = -1;
+  for (int k = 0; k < 5000; ++k) {
+    const Vec2 p(u(rng), u(rng));
+    const auto l = loc.locate(p, k % 2 ? hint : -1);
+    hint = l.triangle;
+    ASSERT_TRUE(l.inside);
+    Vec2 q = Vec2::Zero();
+    for (int c = 0; c < 3; ++c) q += l.bary[c] * m.vertices[m.triangles[l.triangle][c]];
+    EXPECT_NEAR((q - p).norm(), 0.0, 1e-12);
+  }
+  const auto out = loc.locate(Vec2(1.5, 0.5));
+  EXPECT_FALSE(out.inside);
+}
+
+TEST(BackgroundMetricField, ReproducesConstantAndInterpolatesLogEuclidean) {
+  const Mesh2 m = grid(10, 3);
+  const Metric2 c = Metric2::fromSizes(0.3, 0.01, 0.4);
+  BackgroundMetricField constant(m, std::vector<Metric2>(m.vertices.size(), c));
+  const Metric2 at = constant.at({0.37, 0.61});
+  EXPECT_DOUBLE_EQ(at.m11(), c.m11());
+  // sizes varying as exp(x): log-Euclidean interpolation reproduces log h linear in x exactly
+  std::vector<Metric2> ms;
+  for (const auto& v : m.vertices) ms.push_back(Metric2::isotropic(std::exp(-2.0 * v.x())));
+  BackgroundMetricField graded(m, ms);
+  EXPECT_NEAR(graded.at({0.42, 0.5}).eigen().h1, std::exp(-0.84), 1e-12);
+  EXPECT_THROW(BackgroundMetricField(m, std::vector<Metric2>(3, c)), InputError);
+}
+
+TEST(AnalyticMetricField, EvaluatesAndReportsErrors) {
+  AnalyticMetricField f(AnalyticMetricField::Form::Sizes, "0.15*abs(sqrt(x^2+y^2)-6)+0.2", "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0");
+  const Metric2 m = f.at({6, 0});
+  EXPECT_NEAR(m.eigen().h1, 0.2, 1e-12);
+  EXPECT_NEAR(m.eigen().h2, 0.1, 1e-12);
+  EXPECT_THROW(AnalyticMetricField(AnalyticMetricField::Form::Sizes, "1+", "1", "0", "cfg.json: metric"), InputError);
+  EXPECT_THROW(AnalyticMetricField(AnalyticMetricField::Form::Sizes, "z", "1", "0"), InputError);
+  AnalyticMetricField neg(AnalyticMetricField::Form::Sizes, "x", "1", "0", "cfg.json: metric");
+  try {
+    neg.at({-1, 0});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cfg.json: metric at (-1, 0)"), std::string::npos) << e.what();
+  }
+}
