@@ -1,0 +1,242 @@
+#include "mesher/surface.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace ablmg::mesher {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// A built-in surface: closed-form r and derivatives.
+class FormulaSurface final : public ParametricSurface {
+public:
+  using PointFn = std::function<Vec3(double, double)>;
+  using DerivFn = std::function<std::array<Vec3, 2>(double, double)>;
+  FormulaSurface(std::string text, Domain domain, PointFn r, DerivFn dr)
+      : text_(std::move(text)), domain_(std::move(domain)), r_(std::move(r)), dr_(std::move(dr)) {}
+  Vec3 point(const Vec2& uv) const override { return r_(uv.x(), uv.y()); }
+  std::array<Vec3, 2> derivatives(const Vec2& uv) const override { return dr_(uv.x(), uv.y()); }
+  const Domain& parameterDomain() const override { return domain_; }
+  std::string description() const override { return text_; }
+
+private:
+  std::string text_;
+  Domain domain_;
+  PointFn r_;
+  DerivFn dr_;
+};
+
+class ExpressionSurface final : public ParametricSurface {
+public:
+  ExpressionSurface(const std::string& x, const std::string& y, const std::string& z, Domain domain,
+                    const std::string& source)
+      : domain_(std::move(domain)), text_("x=" + x + ", y=" + y + ", z=" + z) {
+    const std::string* e[3] = {&x, &y, &z};
+    const char* names[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      try {
+        p_[k].DefineVar("u", &u_);
+        p_[k].DefineVar("v", &v_);
+        p_[k].DefineConst("pi", kPi);
+        p_[k].SetExpr(*e[k]);
+        p_[k].Eval();
+      } catch (const mu::Parser::exception_type& err) {
+        throw InputError(source + "." + names[k] + ": bad expression '" + *e[k] + "': " + err.GetMsg());
+      }
+    }
+  }
+  Vec3 point(const Vec2& uv) const override {
+    u_ = uv.x();
+    v_ = uv.y();
+    Vec3 r(p_[0].Eval(), p_[1].Eval(), p_[2].Eval());
+    ABLMG_REQUIRE(r.allFinite(), "surface: r(" << uv.x() << ", " << uv.y() << ") is not finite");
+    return r;
+  }
+  const Domain& parameterDomain() const override { return domain_; }
+  std::string description() const override { return text_; }
+
+private:
+  Domain domain_;
+  std::string text_;
+  mutable double u_ = 0, v_ = 0;
+  mu::Parser p_[3];
+};
+
+} // namespace
+
+std::array<Vec3, 2> ParametricSurface::derivatives(const Vec2& uv) const {
+  const double hu = 1e-6 * (1 + std::abs(uv.x())), hv = 1e-6 * (1 + std::abs(uv.y()));
+  return {(point(uv + Vec2(hu, 0)) - point(uv - Vec2(hu, 0))) / (2 * hu),
+          (point(uv + Vec2(0, hv)) - point(uv - Vec2(0, hv))) / (2 * hv)};
+}
+
+std::vector<std::string> builtinSurfaceList() {
+  return {"paper-fig16   x=u, y=v, z=cos^2(pi(u^2+v^2))              (u,v) in [-1,1]^2  (paper eq. 18, Fig. 16)",
+          "sphere-patch  unit sphere (sin v cos u, sin v sin u, cos v)  (u,v) in [0,pi]x[pi/6,5pi/6]",
+          "torus         ((1+0.3cos v)cos u, (1+0.3cos v)sin u, 0.3 sin v)  (u,v) in [0,3pi/2]^2 (seams not glued)",
+          "cylinder      (cos u, sin u, v)                            (u,v) in [0,pi]x[0,2]",
+          "saddle        x=u, y=v, z=u^2-v^2                          (u,v) in [-1,1]^2"};
+}
+
+std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
+  if (name == "paper-fig16")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[0], Domain::rectangle(-1, -1, 1, 1),
+        [](double u, double v) { const double c = std::cos(kPi * (u * u + v * v)); return Vec3(u, v, c * c); },
+        [](double u, double v) {
+          const double s2 = std::sin(2 * kPi * (u * u + v * v));  // d/du cos²(s) = −sin(2s)·2πu
+          return std::array<Vec3, 2>{Vec3(1, 0, -2 * kPi * u * s2), Vec3(0, 1, -2 * kPi * v * s2)};
+        });
+  if (name == "sphere-patch")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[1], Domain::rectangle(0, kPi / 6, kPi, 5 * kPi / 6),
+        [](double u, double v) { return Vec3(std::sin(v) * std::cos(u), std::sin(v) * std::sin(u), std::cos(v)); },
+        [](double u, double v) {
+          return std::array<Vec3, 2>{Vec3(-std::sin(v) * std::sin(u), std::sin(v) * std::cos(u), 0),
+                                     Vec3(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), -std::sin(v))};
+        });
+  if (name == "torus")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[2], Domain::rectangle(0, 0, 1.5 * kPi, 1.5 * kPi),
+        [](double u, double v) {
+          const double w = 1 + 0.3 * std::cos(v);
+          return Vec3(w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v));
+        },
+        [](double u, double v) {
+          const double w = 1 + 0.3 * std::cos(v);
+          return std::array<Vec3, 2>{Vec3(-w * std::sin(u), w * std::cos(u), 0),
+                                     Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
+        });
+  if (name == "cylinder")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[3], Domain::rectangle(0, 0, kPi, 2),
+        [](double u, double v) { return Vec3(std::cos(u), std::sin(u), v); },
+        [](double u, double) { return std::array<Vec3, 2>{Vec3(-std::sin(u), std::cos(u), 0), Vec3(0, 0, 1)}; });
+  if (name == "saddle")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[4], Domain::rectangle(-1, -1, 1, 1),
+        [](double u, double v) { return Vec3(u, v, u * u - v * v); },
+        [](double u, double v) { return std::array<Vec3, 2>{Vec3(1, 0, 2 * u), Vec3(0, 1, -2 * v)}; });
+  throw InputError("surface: unknown built-in '" + name +
+                   "' (known: paper-fig16, sphere-patch, torus, cylinder, saddle; see `ablmg surface --list`)");
+}
+
+std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
+                                                         double u0, double v0, double u1, double v1,
+                                                         const std::string& source) {
+  return std::make_unique<ExpressionSurface>(x, y, z, Domain::rectangle(u0, v0, u1, v1), source);
+}
+
+Metric3Field isotropicMetric3(double h) {
+  ABLMG_REQUIRE(std::isfinite(h) && h > 0, "surface: size h must be positive and finite (got " << h << ")");
+  const Metric3 m = Metric3::Identity() / (h * h);
+  return [m](const Vec3&) { return m; };
+}
+
+Metric2 InducedMetricField::at(const Vec2& uv) const {
+  const auto d = surface_.derivatives(uv);
+  Eigen::Matrix<double, 3, 2> J;
+  J.col(0) = d[0];
+  J.col(1) = d[1];
+  const Metric3 m3 = m3_(surface_.point(uv));
+  const Eigen::Matrix2d m2 = J.transpose() * m3 * J;  // eq. (16)
+  // rank test on the first fundamental form JᵀJ: relative determinant
+  const Eigen::Matrix2d g = J.transpose() * J;
+  const double rel = g.determinant() / std::max(1e-300, g(0, 0) * g(1, 1));
+  ABLMG_REQUIRE(J.allFinite() && rel > 1e-12,
+                "surface: the Jacobian [r_u r_v] is rank-deficient at (u, v) = (" << uv.x() << ", " << uv.y()
+                                                                                   << ") (a pole or fold); restrict the parameter domain");
+  std::ostringstream where;
+  where << "induced metric at (u, v) = (" << uv.x() << ", " << uv.y() << ")";
+  return Metric2::fromTensor(m2(0, 0), 0.5 * (m2(0, 1) + m2(1, 0)), m2(1, 1), where.str());
+}
+
+double SurfaceMesh::area() const {
+  double a = 0;
+  for (const auto& t : triangles) a += 0.5 * (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).norm();
+  return a;
+}
+
+SurfaceMesh mapToSurface(const Mesh2& parameterMesh, const ParametricSurface& surface) {
+  SurfaceMesh s;
+  s.vertices.reserve(parameterMesh.vertices.size());
+  for (const auto& uv : parameterMesh.vertices) {
+    const Vec3 p = surface.point(uv);
+    ABLMG_REQUIRE(p.allFinite(), "surface: r(" << uv.x() << ", " << uv.y() << ") is not finite");
+    s.vertices.push_back(p);
+  }
+  s.triangles = parameterMesh.triangles;
+  return s;
+}
+
+std::vector<double> leeQuality(const SurfaceMesh& mesh, const Metric3Field& m3) {
+  std::vector<double> q;
+  q.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &p1 = mesh.vertices[t[0]], &p2 = mesh.vertices[t[1]], &p3 = mesh.vertices[t[2]];
+    const Vec3 e12 = p2 - p1, e13 = p3 - p1, e23 = p3 - p2;
+    const Vec3 n = e12.cross(e13);
+    const double area2 = n.norm();  // Det([P2−P1, P3−P1]) in the triangle's plane
+    if (!(area2 > 0)) {
+      q.push_back(0.0);
+      continue;
+    }
+    Eigen::Matrix<double, 3, 2> T;  // orthonormal basis of the triangle's plane
+    T.col(0) = e12.normalized();
+    T.col(1) = n.cross(e12).normalized();
+    double alpha = 1e300;
+    for (int i = 0; i < 3; ++i) {
+      const Metric3 M = m3(mesh.vertices[t[i]]);
+      const double detM = (T.transpose() * M * T).determinant();
+      const double d2 = e12.dot(M * e12) + e23.dot(M * e23) + e13.dot(M * e13);
+      alpha = std::min(alpha, 2 * std::sqrt(3.0) * std::sqrt(detM) * area2 / d2);  // eq. (20)
+    }
+    q.push_back(alpha);  // eq. (19)
+  }
+  return q;
+}
+
+std::vector<double> surfaceEdgeLengths(const SurfaceMesh& mesh, const Metric3Field& m3) {
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> len;
+  len.reserve(edges.size());
+  for (const auto& e : edges) {
+    const Vec3 d = mesh.vertices[e[1]] - mesh.vertices[e[0]];
+    const Metric3 M = 0.5 * (m3(mesh.vertices[e[0]]) + m3(mesh.vertices[e[1]]));
+    len.push_back(std::sqrt(d.dot(M * d)));
+  }
+  return len;
+}
+
+std::string checkManifold(const SurfaceMesh& mesh) {
+  std::vector<std::array<int, 3>> half;  // (lo, hi, forward)
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      half.push_back({std::min(a, b), std::max(a, b), a < b});
+    }
+  std::sort(half.begin(), half.end());
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i;
+    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
+    const std::string name = "edge (" + std::to_string(half[i][0]) + ", " + std::to_string(half[i][1]) + ")";
+    if (j - i > 2) return name + " lies in " + std::to_string(j - i) + " triangles";
+    if (j - i == 2 && half[i][2] == half[i + 1][2]) return name + " is used twice in the same direction (inconsistent orientation)";
+    i = j;
+  }
+  return "";
+}
+
+} // namespace ablmg::mesher
