@@ -3,7 +3,8 @@
 #   1. install the Debian packages (idempotent),
 #   2. Release build + all CTest tests (unit tests, CLI tests, examples at small size),
 #   3. an AddressSanitizer + UndefinedBehaviorSanitizer build running the unit tests
-#      (set ABLMG_SKIP_SANITIZE=1 to skip it locally).
+#      (set ABLMG_SKIP_SANITIZE=1 to skip it locally),
+#   4. every libFuzzer target for FUZZ_SECONDS (default 30) each (ABLMG_SKIP_FUZZ=1 skips).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
@@ -16,4 +17,7 @@ if [ "${ABLMG_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake --build build-asan -j"$jobs" --target test_core test_io test_mesher test_fem test_adapt 2>/dev/null ||
     cmake --build build-asan -j"$jobs"
   ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -L "core|io|mesher|fem|adapt"
+fi
+if [ "${ABLMG_SKIP_FUZZ:-0}" != "1" ]; then
+  bash scripts/fuzz.sh
 fi
