@@ -1,0 +1,237 @@
+#include "fem/assemble.hpp"
+
+#include "core/error.hpp"
+#include "fem/quadrature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace ablmg::fem {
+namespace {
+
+void requireSize(const ScalarData& d, const Mesh2& mesh, const char* what) {
+  ABLMG_REQUIRE(!d.isVertexValues() || int(d.vertexValues.size()) == mesh.numVertices(),
+                what << ": " << d.vertexValues.size() << " per-vertex values given for a mesh of "
+                     << mesh.numVertices() << " vertices");
+}
+
+double valueAtVertex(const ScalarData& d, const Mesh2& mesh, int v) {
+  if (d.isFunction()) return d.fn(mesh.vertices[v].x(), mesh.vertices[v].y());
+  if (d.isVertexValues()) return d.vertexValues[v];
+  return d.constant;
+}
+
+/// Union–find root with path halving.
+int findRoot(std::vector<int>& parent, int v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+/// Every connected piece of the mesh must hold a Dirichlet vertex, else A is singular.
+void requireDirichletInEveryPiece(const Mesh2& mesh, const std::vector<char>& isDirichlet) {
+  std::vector<int> parent(mesh.numVertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) {
+      const int a = findRoot(parent, t[0]), b = findRoot(parent, t[k]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<char> rootHasDirichlet(mesh.numVertices(), 0);
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    if (isDirichlet[v]) rootHasDirichlet[findRoot(parent, v)] = 1;
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    ABLMG_REQUIRE(rootHasDirichlet[findRoot(parent, v)],
+                  "assemble: the connected piece of the mesh containing vertex "
+                      << v << " (" << mesh.vertices[v].x() << ", " << mesh.vertices[v].y()
+                      << ") has no Dirichlet vertex: the system is singular (pure Neumann problem)");
+}
+
+} // namespace
+
+Eigen::VectorXd LinearSystem::expand(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd u = dirichletValues;
+  for (int d = 0; d < int(vertexOfDof.size()); ++d) u[vertexOfDof[d]] = x[d];
+  return u;
+}
+
+std::vector<char> dirichletVertices(const Mesh2& mesh, const PoissonProblem& problem, Eigen::VectorXd& values) {
+  const int nv = mesh.numVertices();
+  std::vector<char> is(nv, 0);
+  std::vector<int> tagOf(nv, 0);
+  values = Eigen::VectorXd::Zero(nv);
+  for (const auto& [tag, data] : problem.dirichlet) requireSize(data, mesh, "Dirichlet data");
+  requireSize(problem.dirichletDefault, mesh, "default Dirichlet data");
+  for (const auto& e : mesh.boundaryEdges) {
+    const ScalarData* data = nullptr;
+    if (auto it = problem.dirichlet.find(e.ref); it != problem.dirichlet.end())
+      data = &it->second;
+    else if (!problem.neumann.count(e.ref) && problem.hasDirichletDefault)
+      data = &problem.dirichletDefault;
+    if (!data) continue;
+    for (int v : {e.a, e.b}) {
+      if (is[v] && tagOf[v] <= e.ref) continue;  // the lowest Dirichlet tag at a vertex wins
+      is[v] = 1;
+      tagOf[v] = e.ref;
+      values[v] = valueAtVertex(*data, mesh, v);
+      ABLMG_REQUIRE(std::isfinite(values[v]), "Dirichlet data (tag " << e.ref << ") at vertex " << v << " is "
+                                                                      << values[v]);
+    }
+  }
+  return is;
+}
+
+LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
+  const int nv = mesh.numVertices(), nt = mesh.numTriangles();
+  ABLMG_REQUIRE(nt > 0, "assemble: the mesh has no triangles");
+  requireSize(problem.kappa, mesh, "kappa");
+  requireSize(problem.f, mesh, "f");
+  for (const auto& [tag, data] : problem.neumann) requireSize(data, mesh, "Neumann data");
+
+  LinearSystem sys;
+  const std::vector<char> isDirichlet = dirichletVertices(mesh, problem, sys.dirichletValues);
+  sys.dofOfVertex.assign(nv, -1);
+  for (int v = 0; v < nv; ++v)
+    if (!isDirichlet[v]) {
+      sys.dofOfVertex[v] = int(sys.vertexOfDof.size());
+      sys.vertexOfDof.push_back(v);
+    }
+  const int n = int(sys.vertexOfDof.size());
+  sys.numDirichletVertices = nv - n;
+  ABLMG_REQUIRE(sys.numDirichletVertices > 0,
+                "assemble: no boundary vertex has Dirichlet data (no tag of the mesh's "
+                    << mesh.boundaryEdges.size()
+                    << " boundary edges is Dirichlet): the pure Neumann system is singular");
+  requireDirichletInEveryPiece(mesh, isDirichlet);
+
+  // 1. Sparsity pattern: column d holds the free vertices sharing a triangle with vertex d.
+  const Mesh2::VertexTriangles vt = mesh.vertexTriangles();
+  std::vector<int> outer(n + 1, 0), inner;
+  inner.reserve(std::size_t(n) * 7);
+  std::vector<int> buf;
+  for (int d = 0; d < n; ++d) {
+    const int v = sys.vertexOfDof[d];
+    buf.clear();
+    for (int k = vt.offsets[v]; k < vt.offsets[v + 1]; ++k)
+      for (int w : mesh.triangles[vt.ids[k]])
+        if (sys.dofOfVertex[w] >= 0) buf.push_back(sys.dofOfVertex[w]);
+    std::sort(buf.begin(), buf.end());
+    buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
+    inner.insert(inner.end(), buf.begin(), buf.end());
+    outer[d + 1] = int(inner.size());
+  }
+  sys.A.resize(n, n);
+  sys.A.resizeNonZeros(Eigen::Index(inner.size()));
+  std::copy(outer.begin(), outer.end(), sys.A.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), sys.A.innerIndexPtr());
+  std::fill(sys.A.valuePtr(), sys.A.valuePtr() + inner.size(), 0.0);
+  sys.b = Eigen::VectorXd::Zero(n);
+
+  // 2. Element loop: local stiffness and load, scattered into the pattern.
+  const TriangleRule& rule = triangleRule(5);
+  double* values = sys.A.valuePtr();
+  for (int t = 0; t < nt; ++t) {
+    const auto& tri = mesh.triangles[t];
+    const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
+    const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+    ABLMG_REQUIRE(area > 0, "assemble: triangle " << t << " has non-positive area " << area);
+    // ∫_T κ
+    double kappaInt;
+    if (problem.kappa.isFunction()) {
+      kappaInt = 0;
+      for (int q = 0; q < rule.size(); ++q) {
+        const auto& l = rule.points[q];
+        const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+        const double k = problem.kappa.fn(x.x(), x.y());
+        ABLMG_REQUIRE(k > 0 && std::isfinite(k), "assemble: kappa = " << k << " at (" << x.x() << ", " << x.y()
+                                                                      << ") in triangle " << t
+                                                                      << " (kappa must be positive: the system "
+                                                                         "would not be SPD)");
+        kappaInt += rule.weights[q] * k;
+      }
+      kappaInt *= area;
+    } else if (problem.kappa.isVertexValues()) {
+      const auto& kv = problem.kappa.vertexValues;
+      for (int v : tri)
+        ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]), "assemble: kappa = " << kv[v] << " at vertex " << v
+                                                                               << " (kappa must be positive)");
+      kappaInt = area * (kv[tri[0]] + kv[tri[1]] + kv[tri[2]]) / 3;
+    } else {
+      ABLMG_REQUIRE(problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
+                    "assemble: kappa = " << problem.kappa.constant
+                                         << " (kappa must be positive: the system would not be SPD)");
+      kappaInt = area * problem.kappa.constant;
+    }
+    // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge.
+    Vec2 e[3];
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& a = p[(k + 1) % 3];
+      const Vec2& b = p[(k + 2) % 3];
+      e[k] = Vec2(a.y() - b.y(), b.x() - a.x());
+    }
+    const double scale = kappaInt / (4 * area * area);
+    // ∫_T f λ_k
+    double load[3] = {0, 0, 0};
+    if (problem.f.isFunction()) {
+      for (int q = 0; q < rule.size(); ++q) {
+        const auto& l = rule.points[q];
+        const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+        const double fq = rule.weights[q] * problem.f.fn(x.x(), x.y());
+        for (int k = 0; k < 3; ++k) load[k] += fq * l[k];
+      }
+      for (double& v : load) v *= area;
+    } else if (problem.f.isVertexValues()) {
+      const auto& fv = problem.f.vertexValues;
+      const double s = fv[tri[0]] + fv[tri[1]] + fv[tri[2]];
+      for (int k = 0; k < 3; ++k) load[k] = area / 12 * (s + fv[tri[k]]);
+    } else {
+      for (double& v : load) v = problem.f.constant * area / 3;
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int dk = sys.dofOfVertex[tri[k]];
+      if (dk < 0) continue;
+      sys.b[dk] += load[k];
+      const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
+      const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
+      for (int l = 0; l < 3; ++l) {
+        const double akl = scale * e[k].dot(e[l]);
+        const int dl = sys.dofOfVertex[tri[l]];
+        if (dl < 0) {
+          sys.b[dk] -= akl * sys.dirichletValues[tri[l]];  // lifting
+          continue;
+        }
+        const int* it = std::find(rowBegin, rowEnd, dl);
+        ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
+        values[it - sys.A.innerIndexPtr()] += akl;
+      }
+    }
+  }
+
+  // 3. Neumann flux on non-Dirichlet boundary edges: ∫_e g_N λ_k ds.
+  for (const auto& be : mesh.boundaryEdges) {
+    const auto it = problem.neumann.find(be.ref);
+    if (it == problem.neumann.end() || problem.dirichlet.count(be.ref)) continue;
+    const ScalarData& g = it->second;
+    const Vec2 a = mesh.vertices[be.a], b = mesh.vertices[be.b];
+    const double len = (b - a).norm();
+    double ga = 0, gb = 0;  // ∫_e g λ_a, ∫_e g λ_b
+    if (g.isFunction()) {
+      for (const auto& [s, w] : gaussLegendre01(3)) {
+        const Vec2 x = (1 - s) * a + s * b;
+        const double gq = w * len * g.fn(x.x(), x.y());
+        ga += gq * (1 - s);
+        gb += gq * s;
+      }
+    } else if (g.isVertexValues()) {
+      ga = len * (2 * g.vertexValues[be.a] + g.vertexValues[be.b]) / 6;
+      gb = len * (g.vertexValues[be.a] + 2 * g.vertexValues[be.b]) / 6;
+    } else {
+      ga = gb = g.constant * len / 2;
+    }
+    if (sys.dofOfVertex[be.a] >= 0) sys.b[sys.dofOfVertex[be.a]] += ga;
+    if (sys.dofOfVertex[be.b] >= 0) sys.b[sys.dofOfVertex[be.b]] += gb;
+  }
+  return sys;
+}
+
+} // namespace ablmg::fem

@@ -1,0 +1,58 @@
+#pragma once
+/// PoissonProblem: the data of  −∇·(κ ∇u) = f  in Ω,
+///   u = g_D            on the boundary edges whose tag has Dirichlet data,
+///   κ ∂u/∂n = g_N      on the other boundary edges (g_N = 0 unless given).
+///
+/// Every datum is a ScalarData: a function of (x, y), or per-vertex values of the mesh it
+/// will be used with (interpolated linearly on each triangle / edge), or a constant.
+/// Functions are plain std::function; expression strings (muparser) are parsed by cli/.
+/// Units: those of the coordinates; κ > 0 is required everywhere (checked at quadrature
+/// points by assemble(), which throws InputError otherwise).
+#include <functional>
+#include <map>
+#include <vector>
+
+namespace ablmg::fem {
+
+using ScalarFn = std::function<double(double x, double y)>;
+
+/// A scalar field given as a function, as per-vertex values, or as a constant.
+/// Exactly one form is used: `fn` if set, else `vertexValues` if non-empty, else `constant`.
+struct ScalarData {
+  ScalarFn fn;
+  std::vector<double> vertexValues;  ///< one per mesh vertex
+  double constant = 0;
+
+  ScalarData() = default;
+  ScalarData(double c) : constant(c) {}                              // NOLINT: implicit by design
+  ScalarData(ScalarFn f) : fn(std::move(f)) {}                       // NOLINT
+  static ScalarData values(std::vector<double> v) {
+    ScalarData d;
+    d.vertexValues = std::move(v);
+    return d;
+  }
+  bool isFunction() const { return bool(fn); }
+  bool isVertexValues() const { return !fn && !vertexValues.empty(); }
+  bool isConstant() const { return !fn && vertexValues.empty(); }
+};
+
+struct PoissonProblem {
+  ScalarData kappa = 1.0;  ///< diffusion coefficient κ > 0
+  ScalarData f = 0.0;      ///< right-hand side; functions are integrated by a degree-5 rule
+  /// Dirichlet data per boundary reference tag (BoundaryEdge::ref).
+  std::map<int, ScalarData> dirichlet;
+  /// When `hasDirichletDefault`: Dirichlet data for every boundary tag listed neither in
+  /// `dirichlet` nor in `neumann` (e.g. the exact u on the whole boundary).
+  ScalarData dirichletDefault;
+  bool hasDirichletDefault = false;
+  /// Neumann flux g_N = κ ∂u/∂n per tag; tags with no entry (and no Dirichlet) get g_N = 0.
+  std::map<int, ScalarData> neumann;
+
+  /// Convenience: Dirichlet data g on every boundary edge.
+  void setDirichletEverywhere(ScalarData g) {
+    dirichletDefault = std::move(g);
+    hasDirichletDefault = true;
+  }
+};
+
+} // namespace ablmg::fem

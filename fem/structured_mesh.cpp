@@ -1,0 +1,110 @@
+#include "fem/structured_mesh.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace ablmg::fem {
+namespace {
+
+/// Tag of the domain segment containing the segment [a, b] (both on an axis-parallel segment).
+int tagOfEdge(const Domain& domain, const Vec2& a, const Vec2& b, double tol) {
+  const Vec2 m = 0.5 * (a + b);
+  for (const auto& loop : domain.loops()) {
+    const int n = int(loop.points.size());
+    for (int k = 0; k < n; ++k) {
+      const Vec2 &p = loop.points[k], &q = loop.points[(k + 1) % n];
+      const Vec2 d = q - p;
+      const double len2 = d.squaredNorm();
+      const double s = (m - p).dot(d) / len2;
+      if (s < 0 || s > 1) continue;
+      if ((p + s * d - m).norm() <= tol) return loop.tags.empty() ? 1 : loop.tags[k];
+    }
+  }
+  ABLMG_FAIL("structuredMesh: boundary edge at (" << m.x() << ", " << m.y() << ") lies on no domain segment");
+}
+
+} // namespace
+
+Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, std::uint64_t seed) {
+  ABLMG_REQUIRE(nx >= 1 && ny >= 1, "structuredMesh: nx = " << nx << ", ny = " << ny << " (need ≥ 1)");
+  ABLMG_REQUIRE(perturbation >= 0 && perturbation <= 0.2,
+                "structuredMesh: perturbation = " << perturbation << " outside [0, 0.2]");
+  ABLMG_REQUIRE(!domain.loops().empty(), "structuredMesh: empty domain");
+  const auto [lo, hi] = domain.boundingBox();
+  const double hx = (hi.x() - lo.x()) / nx, hy = (hi.y() - lo.y()) / ny;
+  const double tol = 1e-9 * std::max(hx, hy);
+  for (std::size_t l = 0; l < domain.loops().size(); ++l) {
+    const auto& pts = domain.loops()[l].points;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const Vec2 &p = pts[k], &q = pts[(k + 1) % pts.size()];
+      ABLMG_REQUIRE(std::abs(p.x() - q.x()) <= tol || std::abs(p.y() - q.y()) <= tol,
+                    "structuredMesh: segment " << k << " of loop " << l << " is not axis-parallel");
+      const double gi = (p.x() - lo.x()) / hx, gj = (p.y() - lo.y()) / hy;
+      ABLMG_REQUIRE(std::abs(gi - std::round(gi)) < 1e-9 && std::abs(gj - std::round(gj)) < 1e-9,
+                    "structuredMesh: point " << k << " of loop " << l << " (" << p.x() << ", " << p.y()
+                                             << ") is not a node of the " << nx << "×" << ny << " grid");
+    }
+  }
+
+  // Grid node (i, j) → vertex id, created on first use by a kept cell.
+  const auto node = [&](int i, int j) { return std::size_t(j) * (nx + 1) + i; };
+  std::vector<int> id((nx + 1) * std::size_t(ny + 1), -1);
+  Mesh2 mesh;
+  auto vertex = [&](int i, int j) {
+    int& v = id[node(i, j)];
+    if (v < 0) {
+      v = mesh.numVertices();
+      // Exact coordinates on the box edges (lo + n·h may round off the domain's points).
+      const double x = i == nx ? hi.x() : lo.x() + i * hx, y = j == ny ? hi.y() : lo.y() + j * hy;
+      mesh.vertices.emplace_back(x, y);
+    }
+    return v;
+  };
+  mesh.triangles.reserve(2 * std::size_t(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const Vec2 c(lo.x() + (i + 0.5) * hx, lo.y() + (j + 0.5) * hy);
+      if (!domain.contains(c)) continue;
+      const int a = vertex(i, j), b = vertex(i + 1, j), cc = vertex(i + 1, j + 1), d = vertex(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        mesh.triangles.push_back({a, b, cc});
+        mesh.triangles.push_back({a, cc, d});
+      } else {
+        mesh.triangles.push_back({a, b, d});
+        mesh.triangles.push_back({b, cc, d});
+      }
+    }
+  ABLMG_REQUIRE(!mesh.triangles.empty(), "structuredMesh: no cell centre lies in the domain");
+
+  // Boundary edges: triangle sides with no neighbour, run with the triangle on their left.
+  const auto nbr = mesh.triangleNeighbours();
+  std::vector<char> onBoundary(mesh.numVertices(), 0);
+  for (int t = 0; t < mesh.numTriangles(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (nbr[t][k] < 0) {
+        const int a = mesh.triangles[t][(k + 1) % 3], b = mesh.triangles[t][(k + 2) % 3];
+        mesh.boundaryEdges.push_back({a, b, tagOfEdge(domain, mesh.vertices[a], mesh.vertices[b], tol)});
+        onBoundary[a] = onBoundary[b] = 1;
+      }
+
+  if (perturbation > 0) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    const double amp = perturbation * std::min(hx, hy);
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      const double dx = U(rng), dy = U(rng);  // drawn for every vertex: the stream is layout-stable
+      if (!onBoundary[v]) mesh.vertices[v] += amp * Vec2(dx, dy);
+    }
+  }
+  mesh.requireValid("structuredMesh", domain.area(), 1e-9);
+  return mesh;
+}
+
+Mesh2 unitSquareMesh(int n, double perturbation, std::uint64_t seed) {
+  return structuredMesh(Domain::rectangle(0, 0, 1, 1), n, n, perturbation, seed);
+}
+
+} // namespace ablmg::fem

@@ -1,0 +1,29 @@
+#pragma once
+/// Structured triangle meshes of rectilinear domains (rectangles, the L-shape, any Domain
+/// whose segments are axis-parallel and whose points lie on the grid), for verification,
+/// benchmarks and tests that must not depend on the bubble mesher.
+///
+/// The bounding box is split into nx × ny equal cells; a cell is kept when its centre is in
+/// the domain; each cell is cut into two triangles along alternating diagonals (the
+/// diagonal flips with the parity of i + j), so the mesh has no preferred direction.
+/// Boundary edges carry the tag of the domain segment they lie on.
+///
+/// `perturbation` > 0 moves every non-boundary vertex by a uniform random offset in
+/// [−p·h, p·h]² (h = min cell side; p ≤ 0.2 keeps every triangle valid), seeded by `seed`
+/// (std::mt19937_64: same seed, same mesh): an "unstructured" mesh of the same density.
+/// The result passes Mesh2::validate with the domain's area.
+#include "core/domain.hpp"
+#include "core/mesh2.hpp"
+
+#include <cstdint>
+
+namespace ablmg::fem {
+
+/// Throws InputError if nx, ny < 1, perturbation ∉ [0, 0.2], a segment is not axis-parallel,
+/// or a domain point is not a grid node.
+Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation = 0.0, std::uint64_t seed = 1);
+
+/// The unit square [0,1]² with n × n cells (tags as Domain::rectangle).
+Mesh2 unitSquareMesh(int n, double perturbation = 0.0, std::uint64_t seed = 1);
+
+} // namespace ablmg::fem

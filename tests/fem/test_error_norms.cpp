@@ -1,0 +1,42 @@
+// Tests of fem/error_norms.hpp against known values.
+#include "fem/error_norms.hpp"
+
+#include "core/error.hpp"
+#include "fem/structured_mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ablmg;
+using namespace ablmg::fem;
+
+TEST(ErrorNorms, KnownValuesForZeroDiscreteSolution) {
+  // u_h = 0, u = x y on the unit square: ‖u‖_L2² = 1/9, |u|_H1² = ∫ y² + x² = 2/3.
+  const Mesh2 m = unitSquareMesh(5, 0.2, 3);
+  const ErrorReport e = computeErrors(m, Eigen::VectorXd::Zero(m.numVertices()),
+                                      {[](double x, double y) { return x * y; },
+                                       [](double x, double y) { return Vec2(y, x); }});
+  EXPECT_NEAR(e.l2, std::sqrt(1.0 / 9), 1e-13);
+  EXPECT_NEAR(e.h1, std::sqrt(2.0 / 3), 1e-13);
+  EXPECT_NEAR(e.maxVertex, 1.0, 1e-15);
+  double s = 0;
+  for (double x : e.elementL2) s += x * x;
+  EXPECT_NEAR(std::sqrt(s), e.l2, 1e-13);
+}
+
+TEST(ErrorNorms, InterpolationErrorOfQuadraticMatchesFormulaOnUniformMesh) {
+  // For u = x² on a mesh of n×n cells, u − I_h u = x(h−x)-type bubbles per element edge in x:
+  // it only depends on x, and on every triangle equals the 1D interpolation error of x²,
+  // whose L2 norm over the square is h²/√30.
+  for (int n : {4, 8}) {
+    const Mesh2 m = unitSquareMesh(n);
+    const double h = 1.0 / n;
+    EXPECT_NEAR(interpolationErrorL2(m, [](double x, double) { return x * x; }), h * h / std::sqrt(30.0), 1e-12);
+  }
+}
+
+TEST(ErrorNorms, SizeMismatchIsAnInputError) {
+  const Mesh2 m = unitSquareMesh(2);
+  EXPECT_THROW(computeErrors(m, Eigen::VectorXd::Zero(3), {[](double, double) { return 0.0; }, {}}), InputError);
+}

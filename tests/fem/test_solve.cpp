@@ -1,0 +1,120 @@
+// Tests of fem/assemble.hpp + fem/solve.hpp: patch test, Neumann data, lifting, errors on
+// singular or non-SPD systems.
+#include "fem/solve.hpp"
+
+#include "core/error.hpp"
+#include "fem/error_norms.hpp"
+#include "fem/structured_mesh.hpp"
+#include "fem/test_problems.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace ablmg;
+using namespace ablmg::fem;
+
+namespace {
+double linearU(double x, double y) { return 1 + 2 * x - 3 * y; }
+
+double maxNodalError(const Mesh2& m, const Eigen::VectorXd& u, const ScalarFn& exact) {
+  double e = 0;
+  for (int v = 0; v < m.numVertices(); ++v) e = std::max(e, std::abs(u[v] - exact(m.vertices[v].x(), m.vertices[v].y())));
+  return e;
+}
+} // namespace
+
+TEST(Solve, PatchTestLinearSolutionOnUnstructuredMesh) {
+  const Mesh2 m = unitSquareMesh(13, 0.2, 42);
+  PoissonProblem p;
+  p.kappa = 2.5;
+  p.f = 0.0;
+  p.setDirichletEverywhere(ScalarFn(linearU));
+  const PoissonSolution s = solvePoisson(m, p);
+  EXPECT_LT(maxNodalError(m, s.u, linearU), 1e-12);
+  const ErrorReport e = computeErrors(m, s.u, makeProblem("linear").exact());
+  EXPECT_LT(e.l2, 1e-12);
+  EXPECT_LT(e.h1, 1e-11);
+  EXPECT_EQ(s.stats.unknowns, 12 * 12);
+  EXPECT_GT(s.stats.nonZeros, 5L * s.stats.unknowns);
+  EXPECT_LT(s.stats.residual, 1e-12);
+}
+
+TEST(Solve, PatchTestWithNeumannEdgesAndVariableKappa) {
+  // u = 1 + 2x − 3y, κ = 1 + x²: −∇·(κ∇u) = −∂x(κ)·2 = −4x. Neumann on top (κ ∂u/∂y = −3κ)
+  // and left (−κ ∂u/∂x = −2κ); Dirichlet on bottom and right.
+  const Mesh2 m = unitSquareMesh(10, 0.15, 7);
+  PoissonProblem p;
+  p.kappa = ScalarFn([](double x, double) { return 1 + x * x; });
+  p.f = ScalarFn([](double x, double) { return -4 * x; });
+  p.dirichlet[1] = ScalarFn(linearU);
+  p.dirichlet[2] = ScalarFn(linearU);
+  p.neumann[3] = ScalarFn([](double x, double) { return -3 * (1 + x * x); });
+  p.neumann[4] = ScalarFn([](double x, double) { return -2 * (1 + x * x); });
+  const PoissonSolution s = solvePoisson(m, p);
+  // u ∈ V_h and the quadratures integrate κ (degree 2) and f φ (degree 2) exactly, so by
+  // Galerkin orthogonality u_h = u to round-off, although κ varies.
+  EXPECT_LT(maxNodalError(m, s.u, linearU), 1e-12);
+}
+
+TEST(Solve, ConstantKappaNeumannPatchIsExact) {
+  const Mesh2 m = unitSquareMesh(9, 0.2, 3);
+  PoissonProblem p;
+  p.dirichlet[1] = ScalarFn(linearU);
+  p.neumann[2] = 2.0;   // right: ∂u/∂x
+  p.neumann[3] = -3.0;  // top: ∂u/∂y
+  p.neumann[4] = -2.0;  // left: −∂u/∂x
+  EXPECT_LT(maxNodalError(m, solvePoisson(m, p).u, linearU), 1e-12);
+}
+
+TEST(Solve, PerVertexDataMatchFunctions) {
+  const Mesh2 m = unitSquareMesh(6);
+  PoissonProblem a, b;
+  a.f = 3.0;
+  a.setDirichletEverywhere(ScalarFn(linearU));
+  b.f = ScalarData::values(std::vector<double>(m.numVertices(), 3.0));
+  const Eigen::VectorXd g = interpolate(m, linearU);
+  b.setDirichletEverywhere(ScalarData::values(std::vector<double>(g.data(), g.data() + g.size())));
+  EXPECT_LT((solvePoisson(m, a).u - solvePoisson(m, b).u).norm(), 1e-12);
+}
+
+TEST(Solve, SingularOrNonSpdSystemsAreInputErrors) {
+  const Mesh2 m = unitSquareMesh(4);
+  PoissonProblem neumannOnly;
+  neumannOnly.f = 1.0;
+  try {
+    solvePoisson(m, neumannOnly);
+    FAIL() << "pure Neumann problem accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+  }
+  PoissonProblem negative;
+  negative.kappa = -1.0;
+  negative.setDirichletEverywhere(0.0);
+  try {
+    solvePoisson(m, negative);
+    FAIL() << "negative kappa accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("kappa"), std::string::npos) << e.what();
+  }
+  PoissonProblem signChange;
+  signChange.kappa = ScalarFn([](double x, double) { return x - 0.5; });
+  signChange.setDirichletEverywhere(0.0);
+  EXPECT_THROW(solvePoisson(m, signChange), InputError);
+  PoissonProblem wrongSize;
+  wrongSize.f = ScalarData::values({1.0, 2.0});
+  wrongSize.setDirichletEverywhere(0.0);
+  EXPECT_THROW(solvePoisson(m, wrongSize), InputError);
+}
+
+TEST(Solve, PieceWithoutDirichletVertexIsAnInputError) {
+  // Two disjoint squares; Dirichlet only on tags of the first one.
+  Mesh2 m = unitSquareMesh(3), m2 = unitSquareMesh(3);
+  const int off = m.numVertices();
+  for (auto v : m2.vertices) m.vertices.push_back(v + Vec2(2, 0));
+  for (auto t : m2.triangles) m.triangles.push_back({t[0] + off, t[1] + off, t[2] + off});
+  for (auto e : m2.boundaryEdges) m.boundaryEdges.push_back({e.a + off, e.b + off, e.ref + 10});
+  PoissonProblem p;
+  for (int tag = 1; tag <= 4; ++tag) p.dirichlet[tag] = 0.0;
+  EXPECT_THROW(solvePoisson(m, p), InputError);
+  for (int tag = 11; tag <= 14; ++tag) p.dirichlet[tag] = 0.0;
+  EXPECT_NO_THROW(solvePoisson(m, p));
+}

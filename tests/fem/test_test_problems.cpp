@@ -1,0 +1,70 @@
+// Tests of fem/test_problems.hpp: f = −Δu and ∇u checked by finite differences; parameters.
+#include "fem/test_problems.hpp"
+
+#include "core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ablmg;
+using namespace ablmg::fem;
+
+TEST(TestProblems, RightHandSideIsMinusLaplacianAndGradientMatches) {
+  const std::vector<Vec2> points = {{0.31, 0.47}, {0.72, 0.18}, {0.55, 0.91}, {0.12, 0.66}, {0.5, 0.52}};
+  for (const auto& name : problemNames()) {
+    // Moderate parameters so that a centred difference with step 1e-4 resolves the solution.
+    std::map<std::string, double> params;
+    if (name == "peak") params["alpha"] = 20;
+    if (name == "tanhlayer") params["epsilon"] = 0.1;
+    const TestProblem p = makeProblem(name, params);
+    for (Vec2 x : points) {
+      if (name == "lshape") x = 2 * x - Vec2(1, 1) + Vec2(-0.05, 0.03);  // stays in the L, away from 0
+      if (!p.domain.contains(x)) continue;
+      const double h = 1e-4;
+      const double u0 = p.u(x.x(), x.y());
+      const double uxp = p.u(x.x() + h, x.y()), uxm = p.u(x.x() - h, x.y());
+      const double uyp = p.u(x.x(), x.y() + h), uym = p.u(x.x(), x.y() - h);
+      const double lap = (uxp + uxm + uyp + uym - 4 * u0) / (h * h);
+      const double f = p.f(x.x(), x.y());
+      EXPECT_NEAR(-lap, f, 1e-4 * (1 + std::abs(f))) << name << " at " << x.transpose();
+      const Vec2 g = p.grad(x.x(), x.y());
+      const Vec2 gfd((uxp - uxm) / (2 * h), (uyp - uym) / (2 * h));
+      EXPECT_NEAR((g - gfd).norm(), 0.0, 1e-6 * (1 + g.norm())) << name << " at " << x.transpose();
+    }
+  }
+}
+
+TEST(TestProblems, DefaultsAndDomains) {
+  const TestProblem w = makeProblem("wavefront");
+  EXPECT_EQ(w.params.at("alpha"), 20);
+  EXPECT_EQ(w.params.at("xc"), -0.05);
+  EXPECT_EQ(w.params.at("r0"), 0.7);
+  EXPECT_NEAR(w.u(0.7 * std::sqrt(0.5) - 0.05, 0.7 * std::sqrt(0.5) - 0.05), 0.0, 1e-14);  // on the front
+  EXPECT_NEAR(makeProblem("lshape").domain.area(), 3.0, 1e-14);
+  EXPECT_NEAR(makeProblem("peak").u(0.5, 0.5), 1.0, 0);
+  EXPECT_EQ(makeProblem("wavefront", {{"alpha", 1000}}).params.at("alpha"), 1000);
+  // L-shape: u = 0 on the two edges at the reentrant corner (θ = 0 and θ = 3π/2).
+  const TestProblem l = makeProblem("lshape");
+  EXPECT_NEAR(l.u(0.5, 0), 0.0, 1e-15);
+  EXPECT_NEAR(l.u(0, -0.5), 0.0, 1e-15);
+  EXPECT_NEAR(l.u(-0.5, 0), std::pow(0.5, 2.0 / 3) * std::sin(2 * M_PI / 3), 1e-14);
+}
+
+TEST(TestProblems, BadNamesAndParametersAreInputErrorsListingTheValidOnes) {
+  try {
+    makeProblem("wavefrnt");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("wavefront"), std::string::npos) << e.what();
+  }
+  try {
+    makeProblem("wavefront", {{"eps", 1}});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("alpha"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("r0"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(makeProblem("lshape", {{"alpha", 1}}), InputError);
+  EXPECT_THROW(makeProblem("tanhlayer", {{"epsilon", 0}}), InputError);
+}
