@@ -95,6 +95,7 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
     if (!isDirichlet[v]) {
       sys.dofOfVertex[v] = int(sys.vertexOfDof.size());
       sys.vertexOfDof.push_back(v);
+      sys.dofPoints.push_back(mesh.vertices[v]);
     }
   const int n = int(sys.vertexOfDof.size());
   sys.numDirichletVertices = nv - n;

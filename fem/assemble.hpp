@@ -29,6 +29,7 @@ struct LinearSystem {
   Eigen::VectorXd b;                  ///< free
   std::vector<int> dofOfVertex;       ///< −1 for Dirichlet vertices
   std::vector<int> vertexOfDof;       ///< inverse of dofOfVertex
+  std::vector<Vec2> dofPoints;        ///< position of each unknown (for geometric orderings)
   Eigen::VectorXd dirichletValues;    ///< per vertex: g_D at Dirichlet vertices, 0 elsewhere
   int numDirichletVertices = 0;
 
