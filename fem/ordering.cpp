@@ -72,21 +72,19 @@ struct Dissection {
     }
     // Edges lower–upper are covered by the smaller of: upper vertices touching lower, lower
     // vertices touching upper. The separator is that set plus the middle.
-    const int sl = ++stamp;
-    for (int v : lower) mark[v] = sl;
+    // One scan of the lower side's adjacency finds both sets.
     const int su = ++stamp;
     for (int v : upper) mark[v] = su;
-    const auto touching = [&](const std::vector<int>& side, int otherStamp) {
-      std::vector<char> t(side.size(), 0);
-      for (std::size_t k = 0; k < side.size(); ++k)
-        for (Eigen::SparseMatrix<double>::InnerIterator it(A, side[k]); it; ++it)
-          if (mark[it.index()] == otherStamp) {
-            t[k] = 1;
-            break;
-          }
-      return t;
-    };
-    const std::vector<char> tu = touching(upper, sl), tl = touching(lower, su);
+    const int st = ++stamp;  // upper vertices found touching lower
+    std::vector<char> tl(lower.size(), 0);
+    for (std::size_t k = 0; k < lower.size(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, lower[k]); it; ++it)
+        if (mark[it.index()] == su || mark[it.index()] == st) {
+          tl[k] = 1;
+          mark[it.index()] = st;
+        }
+    std::vector<char> tu(upper.size(), 0);
+    for (std::size_t k = 0; k < upper.size(); ++k) tu[k] = mark[upper[k]] == st;
     const long cu = std::count(tu.begin(), tu.end(), 1), cl = std::count(tl.begin(), tl.end(), 1);
     std::vector<int> separator = middle;
     auto split = [&](std::vector<int>& side, const std::vector<char>& t) {
