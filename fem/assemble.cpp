@@ -22,6 +22,12 @@ double valueAtVertex(const ScalarData& d, const Mesh2& mesh, int v) {
   return d.constant;
 }
 
+/// Local stiffness A_kl = ∫_T κ ∇λ_k·∇λ_l and load ∫_T f λ_k of one triangle.
+struct ElementData {
+  double a[3][3];
+  double load[3];
+};
+
 /// Union–find root with path halving.
 int findRoot(std::vector<int>& parent, int v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
@@ -128,10 +134,11 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
   std::fill(sys.A.valuePtr(), sys.A.valuePtr() + inner.size(), 0.0);
   sys.b = Eigen::VectorXd::Zero(n);
 
-  // 2. Element loop: local stiffness and load, scattered into the pattern.
+  // 2. Element loop: local stiffness and load, scattered into the pattern. Local data are
+  //    computed in blocks (in parallel when the problem's functions allow it), then scattered
+  //    serially in triangle order, so the result is bitwise the same for any thread count.
   const TriangleRule& rule = triangleRule(5);
-  double* values = sys.A.valuePtr();
-  for (int t = 0; t < nt; ++t) {
+  const auto computeElement = [&](int t, ElementData& d) {
     const auto& tri = mesh.triangles[t];
     const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
     const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
@@ -163,7 +170,7 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
                                          << " (kappa must be positive: the system would not be SPD)");
       kappaInt = area * problem.kappa.constant;
     }
-    // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge.
+    // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge; A_kl = ∫κ ∇λ_k·∇λ_l.
     Vec2 e[3];
     for (int k = 0; k < 3; ++k) {
       const Vec2& a = p[(k + 1) % 3];
@@ -171,39 +178,63 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
       e[k] = Vec2(a.y() - b.y(), b.x() - a.x());
     }
     const double scale = kappaInt / (4 * area * area);
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) d.a[k][l] = scale * e[k].dot(e[l]);
     // ∫_T f λ_k
-    double load[3] = {0, 0, 0};
+    for (double& v : d.load) v = 0;
     if (problem.f.isFunction()) {
       for (int q = 0; q < rule.size(); ++q) {
         const auto& l = rule.points[q];
         const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
         const double fq = rule.weights[q] * problem.f.fn(x.x(), x.y());
-        for (int k = 0; k < 3; ++k) load[k] += fq * l[k];
+        for (int k = 0; k < 3; ++k) d.load[k] += fq * l[k];
       }
-      for (double& v : load) v *= area;
+      for (double& v : d.load) v *= area;
     } else if (problem.f.isVertexValues()) {
       const auto& fv = problem.f.vertexValues;
       const double s = fv[tri[0]] + fv[tri[1]] + fv[tri[2]];
-      for (int k = 0; k < 3; ++k) load[k] = area / 12 * (s + fv[tri[k]]);
+      for (int k = 0; k < 3; ++k) d.load[k] = area / 12 * (s + fv[tri[k]]);
     } else {
-      for (double& v : load) v = problem.f.constant * area / 3;
+      for (double& v : d.load) v = problem.f.constant * area / 3;
     }
-    for (int k = 0; k < 3; ++k) {
-      const int dk = sys.dofOfVertex[tri[k]];
-      if (dk < 0) continue;
-      sys.b[dk] += load[k];
-      const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
-      const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
-      for (int l = 0; l < 3; ++l) {
-        const double akl = scale * e[k].dot(e[l]);
-        const int dl = sys.dofOfVertex[tri[l]];
-        if (dl < 0) {
-          sys.b[dk] -= akl * sys.dirichletValues[tri[l]];  // lifting
-          continue;
+  };
+
+  constexpr int kBlock = 16384;
+  std::vector<ElementData> block(std::min(nt, kBlock));
+  const bool parallel = problem.threadSafeFunctions && nt >= 2 * kBlock;
+  double* values = sys.A.valuePtr();
+  for (int t0 = 0; t0 < nt; t0 += kBlock) {
+    const int t1 = std::min(nt, t0 + kBlock);
+    int failed = 0;
+#pragma omp parallel for schedule(static) reduction(+ : failed) if (parallel)
+    for (int t = t0; t < t1; ++t) {
+      try {
+        computeElement(t, block[t - t0]);
+      } catch (...) {  // exceptions must not leave the parallel region
+        ++failed;
+      }
+    }
+    if (failed)  // again, serially: throws the first error, as a serial loop would
+      for (int t = t0; t < t1; ++t) computeElement(t, block[t - t0]);
+    for (int t = t0; t < t1; ++t) {
+      const auto& tri = mesh.triangles[t];
+      const ElementData& d = block[t - t0];
+      for (int k = 0; k < 3; ++k) {
+        const int dk = sys.dofOfVertex[tri[k]];
+        if (dk < 0) continue;
+        sys.b[dk] += d.load[k];
+        const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
+        const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
+        for (int l = 0; l < 3; ++l) {
+          const int dl = sys.dofOfVertex[tri[l]];
+          if (dl < 0) {
+            sys.b[dk] -= d.a[k][l] * sys.dirichletValues[tri[l]];  // lifting
+            continue;
+          }
+          const int* it = std::find(rowBegin, rowEnd, dl);
+          ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
+          values[it - sys.A.innerIndexPtr()] += d.a[k][l];
         }
-        const int* it = std::find(rowBegin, rowEnd, dl);
-        ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
-        values[it - sys.A.innerIndexPtr()] += akl;
       }
     }
   }

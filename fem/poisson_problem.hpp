@@ -48,6 +48,11 @@ struct PoissonProblem {
   /// Neumann flux g_N = κ ∂u/∂n per tag; tags with no entry (and no Dirichlet) get g_N = 0.
   std::map<int, ScalarData> neumann;
 
+  /// True when every `fn` above may be called from several threads at once (pure functions,
+  /// e.g. C++ lambdas; not a shared muparser object). assemble() then evaluates elements in
+  /// parallel (OpenMP); the result is bitwise identical either way.
+  bool threadSafeFunctions = false;
+
   /// Convenience: Dirichlet data g on every boundary edge.
   void setDirichletEverywhere(ScalarData g) {
     dirichletDefault = std::move(g);

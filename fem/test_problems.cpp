@@ -37,6 +37,7 @@ PoissonProblem TestProblem::poisson() const {
   p.kappa = 1.0;
   p.f = f;
   p.setDirichletEverywhere(u);
+  p.threadSafeFunctions = true;  // pure lambdas
   return p;
 }
 

@@ -118,3 +118,19 @@ TEST(Solve, PieceWithoutDirichletVertexIsAnInputError) {
   for (int tag = 11; tag <= 14; ++tag) p.dirichlet[tag] = 0.0;
   EXPECT_NO_THROW(solvePoisson(m, p));
 }
+
+TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
+  const Mesh2 m = unitSquareMesh(140, 0.2, 8);  // > 2 blocks of 16384 triangles
+  PoissonProblem p = makeProblem("wavefront").poisson();
+  p.threadSafeFunctions = true;
+  const LinearSystem a = assemble(m, p);
+  p.threadSafeFunctions = false;
+  const LinearSystem b = assemble(m, p);
+  ASSERT_EQ(a.A.nonZeros(), b.A.nonZeros());
+  EXPECT_TRUE(std::equal(a.A.valuePtr(), a.A.valuePtr() + a.A.nonZeros(), b.A.valuePtr()));
+  EXPECT_TRUE(a.b == b.b);
+  // An error inside the parallel loop surfaces as the serial loop's InputError.
+  p.threadSafeFunctions = true;
+  p.kappa = ScalarFn([](double x, double) { return x < 0.9 ? 1.0 : -1.0; });
+  EXPECT_THROW(assemble(m, p), InputError);
+}
