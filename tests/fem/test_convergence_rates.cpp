@@ -77,3 +77,40 @@ TEST(ConvergenceRates, InterpolantErrorIsBelowFiniteElementErrorInH1Sense) {
   EXPECT_LT(fe.l2, 3 * in.l2);
   EXPECT_GT(fe.l2, in.l2 / 3);
 }
+
+TEST(ConvergenceRates, MixedDirichletNeumannPerturbedMeshes) {
+  // smooth u = eˣ sin(πy) + xy; Neumann flux ∂u/∂n on the right (n = +x) and top (n = +y).
+  const TestProblem tp = makeProblem("smooth");
+  PoissonProblem p;
+  p.f = tp.f;
+  p.dirichlet[1] = tp.u;
+  p.dirichlet[4] = tp.u;
+  p.neumann[2] = ScalarFn([&](double x, double y) { return tp.grad(x, y).x(); });
+  p.neumann[3] = ScalarFn([&](double x, double y) { return tp.grad(x, y).y(); });
+  std::vector<double> h, l2, h1;
+  for (int n : {8, 16, 32, 64, 128}) {
+    const Mesh2 m = unitSquareMesh(n, 0.2, 77 + n);
+    const ErrorReport e = computeErrors(m, solvePoisson(m, p).u, tp.exact());
+    h.push_back(1.0 / n);
+    l2.push_back(e.l2);
+    h1.push_back(e.h1);
+  }
+  EXPECT_NEAR(fittedSlope(h, l2), 2.0, 0.15);
+  EXPECT_NEAR(fittedSlope(h, h1), 1.0, 0.1);
+}
+
+TEST(ConvergenceRates, ReentrantCornerIsLimitedByItsSingularity) {
+  // u = r^(2/3) sin(2θ/3) ∈ H^(5/3−ε): uniform refinement gives h^(2/3) in H1 and h^(4/3) in L2
+  // (the motivation for adaptive meshes; issue 11 compares against these slopes).
+  const TestProblem tp = makeProblem("lshape");
+  std::vector<double> h, l2, h1;
+  for (int n : {8, 16, 32, 64, 128}) {
+    const Mesh2 m = structuredMesh(tp.domain, n, n);  // n cells over the length 2 of the box
+    const ErrorReport e = computeErrors(m, solvePoisson(m, tp.poisson()).u, tp.exact());
+    h.push_back(2.0 / n);
+    l2.push_back(e.l2);
+    h1.push_back(e.h1);
+  }
+  EXPECT_NEAR(fittedSlope(h, h1), 2.0 / 3, 0.08);
+  EXPECT_NEAR(fittedSlope(h, l2), 4.0 / 3, 0.12);
+}
