@@ -23,7 +23,8 @@ struct PlacementOptions {
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 10;  ///< refresh the lists every k steps (§3.3)
   int maxSteps = 400;         ///< cap on dynamics steps; stats.hitStepCap says if it was hit
-  double tolerance = 1e-3;    ///< stop when the largest velocity (metric units per unit time) falls below this
+  double tolerance = 1e-3;    ///< stop when the residual (largest net force |f_i|_{M_i}, metric units; see
+                              ///< bubble_system.hpp) falls below this, once the population has settled
   long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
   std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
   int threads = 0;            ///< 0 = OpenMP default
@@ -36,7 +37,7 @@ struct PlacementStats {
   long inserted = 0, deleted = 0;
   int steps = 0;
   bool hitStepCap = false;
-  double initialResidual = 0, finalResidual = 0;  ///< largest bubble velocity
+  double initialResidual = 0, finalResidual = 0;  ///< largest net bubble force in metric units (= c × terminal velocity)
   double secondsInitial = 0, secondsDynamics = 0, secondsAdjacency = 0, secondsPopulation = 0;
 };
 

@@ -1,0 +1,83 @@
+#include "mesher/adjacency.hpp"
+
+#include "core/bucket_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ablmg::mesher {
+namespace {
+
+AdjacencyLists toCsr(std::vector<std::vector<int>>& rows) {
+  AdjacencyLists a;
+  const int n = int(rows.size());
+  a.offsets.assign(std::size_t(n) + 1, 0);
+  for (int i = 0; i < n; ++i) a.offsets[i + 1] = a.offsets[i] + int(rows[i].size());
+  a.ids.resize(std::size_t(a.offsets[n]));
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) std::copy(rows[i].begin(), rows[i].end(), a.ids.begin() + a.offsets[i]);
+  return a;
+}
+
+} // namespace
+
+AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
+  const int n = int(x.size());
+  if (n == 0) return {};
+  Vec2 lo = x[0], hi = x[0];
+  for (const auto& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double area = std::max((hi - lo).prod(), 1e-300);
+  BucketGrid grid(lo, hi, std::max(std::sqrt(area / n), 1e-12 * (hi - lo).norm() + 1e-300), 4L * n + 16);
+  grid.build(x);
+  std::vector<std::vector<int>> found(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    // h1 (largest semi-axis of the unit ellipse) = 1/sqrt(λ_min).
+    const double a = m[i].m11(), b = m[i].m12(), c = m[i].m22();
+    const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    const double R = radius * std::sqrt(2.0) / std::sqrt(std::max(lmin, 1e-300));
+    grid.forEach(x[i], R, [&](int j) {
+      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) found[i].push_back(j);
+    });
+  }
+  std::vector<std::vector<int>> rows(n);
+  for (int i = 0; i < n; ++i)
+    for (int j : found[i]) {
+      rows[i].push_back(j);
+      rows[j].push_back(i);
+    }
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    std::sort(rows[i].begin(), rows[i].end());
+    rows[i].erase(std::unique(rows[i].begin(), rows[i].end()), rows[i].end());
+  }
+  return toCsr(rows);
+}
+
+AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> x, std::span<const Metric2> m,
+                                double radius) {
+  const int n = old.size();
+  std::vector<std::vector<int>> rows(n);
+#pragma omp parallel
+  {
+    std::vector<int> cand;
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      cand.clear();
+      for (int j : old.neighbours(i)) {
+        cand.push_back(j);
+        for (int k : old.neighbours(j)) cand.push_back(k);
+      }
+      std::sort(cand.begin(), cand.end());
+      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+      for (int j : cand)
+        if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) rows[i].push_back(j);
+    }
+  }
+  return toCsr(rows);
+}
+
+} // namespace ablmg::mesher

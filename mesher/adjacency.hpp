@@ -1,0 +1,31 @@
+#pragma once
+/// Bubble adjacency lists (paper §3.3) in compressed rows (AdjacencyLists, node_set.hpp).
+///
+/// Nodes i, j are adjacent iff their metric distance with the averaged tensor (eq. 3),
+/// sqrt(dᵀ (M_i + M_j)/2 d), is ≤ radius (paper: 1.7σ, i.e. 1.7 in metric units since the
+/// rest distance σ = l_ij + l_ji ≈ 1). The relation is symmetric by construction.
+#include "core/metric2.hpp"
+#include "mesher/node_set.hpp"
+
+#include <span>
+
+namespace ablmg::mesher {
+
+/// The adjacency criterion above.
+inline bool withinMetricRadius(const Vec2& d, const Metric2& mi, const Metric2& mj, double radius) {
+  return 0.5 * (mi.squaredLength(d) + mj.squaredLength(d)) <= radius * radius;
+}
+
+/// Built from scratch with a bucket grid (cells ≈ mean node spacing; node i scans the box of
+/// half-width radius·√2·h1_i, which contains every partner j: if the averaged distance is ≤ r
+/// then one of |d|_{M_i}, |d|_{M_j} is ≤ r√2, so the pair is found from i or from j; the rows
+/// are then symmetrised). O(N) expected for metrics whose size varies smoothly. OpenMP.
+AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
+
+/// Refresh after the bubbles moved (§3.3): candidates of i are i's list and its neighbours'
+/// lists (the two-ring), re-tested at the new positions. Symmetric, since the two-ring relation
+/// is. Valid while no bubble moved more than ~(radius − 1.5)/2 since `old` was built.
+AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> positions,
+                                std::span<const Metric2> metrics, double radius);
+
+} // namespace ablmg::mesher

@@ -1,0 +1,188 @@
+#include "mesher/bubble_system.hpp"
+
+#include "mesher/bubble_force.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ablmg::mesher {
+
+BubbleSystem::BubbleSystem(const DomainGeometry& geo, NodeSet nodes, std::vector<double> arcLength)
+    : geo_(&geo), nodes_(std::move(nodes)), s_(std::move(arcLength)) {
+  s_.resize(std::size_t(nodes_.size()), 0.0);
+  vel_.assign(std::size_t(nodes_.size()), Vec2::Zero());
+  force_.assign(std::size_t(nodes_.size()), Vec2::Zero());
+  metrics_.resize(std::size_t(nodes_.size()));
+  setBounds();
+}
+
+void BubbleSystem::setBounds() {
+  const int n = nodes_.size();
+  sLo_.assign(n, -std::numeric_limits<double>::infinity());
+  sHi_.assign(n, std::numeric_limits<double>::infinity());
+  for (int i = 0; i < n; ++i) {
+    if (nodes_.kinds[i] != NodeKind::Segment) continue;
+    const auto& poly = geo_->loops()[nodes_.loops[i]];
+    if (poly.corners.empty()) continue;
+    const double L = poly.length;
+    const double s = geo_->wrap(nodes_.loops[i], s_[i]);
+    std::vector<double> cs;
+    for (int c : poly.corners) cs.push_back(poly.cum[c]);
+    const auto it = std::upper_bound(cs.begin(), cs.end(), s);
+    double lo, hi;
+    if (it == cs.begin()) {
+      lo = cs.back() - L;
+      hi = cs.front();
+    } else if (it == cs.end()) {
+      lo = cs.back();
+      hi = cs.front() + L;
+    } else {
+      lo = *(it - 1);
+      hi = *it;
+    }
+    double su = s;
+    if (su < lo) su += L;
+    if (su > hi) su -= L;
+    const double margin = 1e-4 * (hi - lo);
+    sLo_[i] = lo + margin;
+    sHi_[i] = hi - margin;
+    s_[i] = std::clamp(su, sLo_[i], sHi_[i]);
+  }
+}
+
+double BubbleSystem::arcLength(int i) const { return nodes_.loops[i] < 0 ? -1.0 : geo_->wrap(nodes_.loops[i], s_[i]); }
+
+void BubbleSystem::updateMetrics(const MetricField& field) {
+  metrics_.resize(std::size_t(nodes_.size()));
+  if (field.isConstant()) {
+    if (!metricsConstant_ || metrics_.empty()) {
+      std::fill(metrics_.begin(), metrics_.end(), field.at(nodes_.size() ? nodes_.positions[0] : Vec2::Zero()));
+      metricsConstant_ = true;
+    } else {
+      std::fill(metrics_.begin(), metrics_.end(), metrics_.front());
+    }
+    return;
+  }
+  field.evaluate(nodes_.positions, metrics_);
+}
+
+double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsParams& p) {
+  const int n = nodes_.size();
+  force_.resize(std::size_t(n));
+  const auto& x = nodes_.positions;
+  double residual = 0;
+  std::vector<double> res(std::size_t(n), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    Vec2 f = Vec2::Zero();
+    if (nodes_.kinds[i] != NodeKind::Vertex) {
+      const Metric2& mi = metrics_[i];
+      for (int j : adj.neighbours(i)) {
+        const Vec2 d = x[j] - x[i];
+        const double l2 = d.squaredNorm();
+        if (!(l2 > 0)) continue;
+        const double a = std::sqrt(mi.squaredLength(d)), b = std::sqrt(metrics_[j].squaredLength(d));
+        const double w = 2.0 / (1.0 / a + 1.0 / b);
+        const double fw = interBubbleForce(w, p.k0);
+        if (fw == 0.0) continue;
+        const double l = std::sqrt(l2);
+        const double l0 = restLength(0.5 * l / a, 0.5 * l / b);  // eq. (8)
+        f -= (fw * l0 / l) * d;
+      }
+      if (nodes_.kinds[i] == NodeKind::Segment) {
+        const Vec2 t = geo_->tangentAt(nodes_.loops[i], s_[i]);
+        f = f.dot(t) * t;
+      }
+      res[i] = std::sqrt(mi.squaredLength(f));
+    }
+    force_[i] = f;
+  }
+  for (int i = 0; i < n; ++i) residual = std::max(residual, res[i]);
+  return residual;
+}
+
+void BubbleSystem::advance(const DynamicsParams& p) {
+  const int n = nodes_.size();
+  const double dtm = p.dt / p.mass;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    switch (nodes_.kinds[i]) {
+      case NodeKind::Vertex: break;
+      case NodeKind::Segment: {
+        const int l = nodes_.loops[i];
+        const Vec2 t = geo_->tangentAt(l, s_[i]);
+        const double vt = vel_[i].dot(t) + dtm * (force_[i].dot(t) - p.damping * vel_[i].dot(t));
+        double s = s_[i] + p.dt * vt;
+        if (s <= sLo_[i] || s >= sHi_[i]) {
+          s = std::clamp(s, sLo_[i], sHi_[i]);
+          vel_[i] = Vec2::Zero();
+        } else {
+          vel_[i] = vt * t;
+        }
+        s_[i] = s;
+        nodes_.positions[i] = geo_->pointAt(l, s);
+        nodes_.arc[i] = geo_->indexArc(l, s);
+        break;
+      }
+      case NodeKind::Interior: {
+        const Vec2 v = vel_[i] + dtm * (force_[i] - p.damping * vel_[i]);
+        const Vec2 xn = nodes_.positions[i] + p.dt * v;
+        if (geo_->inside(xn)) {
+          nodes_.positions[i] = xn;
+          vel_[i] = v;
+        } else {
+          vel_[i] = Vec2::Zero();
+        }
+        break;
+      }
+    }
+  }
+}
+
+std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
+  const int n = nodes_.size();
+  std::vector<int> map(n, -1);
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    if (kill[i] && nodes_.kinds[i] == NodeKind::Interior) continue;
+    map[i] = m;
+    nodes_.positions[m] = nodes_.positions[i];
+    nodes_.kinds[m] = nodes_.kinds[i];
+    nodes_.loops[m] = nodes_.loops[i];
+    nodes_.arc[m] = nodes_.arc[i];
+    s_[m] = s_[i];
+    sLo_[m] = sLo_[i];
+    sHi_[m] = sHi_[i];
+    vel_[m] = vel_[i];
+    force_[m] = force_[i];
+    metrics_[m] = metrics_[i];
+    ++m;
+  }
+  nodes_.positions.resize(m);
+  nodes_.kinds.resize(m);
+  nodes_.loops.resize(m);
+  nodes_.arc.resize(m);
+  s_.resize(m);
+  sLo_.resize(m);
+  sHi_.resize(m);
+  vel_.resize(m);
+  force_.resize(m);
+  metrics_.resize(m);
+  return map;
+}
+
+void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
+  nodes_.positions.push_back(x);
+  nodes_.kinds.push_back(NodeKind::Interior);
+  nodes_.loops.push_back(-1);
+  nodes_.arc.push_back(-1.0);
+  s_.push_back(-1.0);
+  sLo_.push_back(-std::numeric_limits<double>::infinity());
+  sHi_.push_back(std::numeric_limits<double>::infinity());
+  vel_.push_back(Vec2::Zero());
+  force_.push_back(Vec2::Zero());
+  metrics_.push_back(m);
+}
+
+} // namespace ablmg::mesher

@@ -1,0 +1,69 @@
+#pragma once
+/// The bubble system of paper §3.2: state and one forward-Euler step of m ẍ + c ẋ = f (eq. 5).
+///
+/// Units. The force of eq. (6)–(7) acts in metric-scaled length: the pair force on i is
+///   F_ij = −f(w_ij) · l0_ij · (x_j − x_i)/|x_j − x_i|,   w = l / l0,  l0 = l_ij + l_ji (eq. 8),
+/// i.e. f(w) metric units of displacement expressed in coordinates through the pair's rest
+/// length l0 (≈ one metric unit in that direction). Positions and velocities are stored in
+/// coordinates, so Δt, m, c, k0 are dimensionless and the §6 defaults work for any size h.
+/// In metric terms w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}), no trigonometry.
+///
+/// Constraints: Vertex nodes never move; Segment nodes keep only the tangential part of their
+/// velocity and slide along their loop's polyline by arc length, clamped strictly between the
+/// two corners around them (corner-less loops wrap); an Interior node's move that would leave
+/// the domain is rejected (position kept, velocity zeroed), so no bubble ever leaves it.
+///
+/// Residual: the largest net force |F_i|_{M_i} (metric units) over movable nodes (tangential
+/// part for Segment nodes), before the step; at rest it is c × the largest velocity.
+/// Deterministic and thread-count independent: forces are computed per node from the
+/// positions at the start of the step (no cross-thread reductions), then all nodes move.
+#include "core/metric_field.hpp"
+#include "mesher/initial_placement.hpp"
+#include "mesher/node_set.hpp"
+
+#include <vector>
+
+namespace ablmg::mesher {
+
+struct DynamicsParams {
+  double k0 = 1.0, mass = 1.0, damping = 3.8429, dt = 0.02;  ///< paper §6
+};
+
+class BubbleSystem {
+public:
+  /// `arcLength`: Euclidean arc length along its loop of every boundary node (any value for
+  /// interior nodes), as from placeBoundaryNodes. The geometry must outlive the system.
+  BubbleSystem(const DomainGeometry& geo, NodeSet nodes, std::vector<double> arcLength);
+
+  const NodeSet& nodes() const { return nodes_; }
+  const std::vector<Metric2>& metrics() const { return metrics_; }
+  const std::vector<Vec2>& velocities() const { return vel_; }
+  int size() const { return nodes_.size(); }
+
+  /// Evaluate M at every position (serially: AnalyticMetricField is not thread-safe; once
+  /// for a constant field).
+  void updateMetrics(const MetricField& field);
+  /// Net forces (eq. 6) from the lists; returns the residual defined above.
+  double computeForces(const AdjacencyLists& adj, const DynamicsParams& p);
+  /// One Euler step using the forces of the last computeForces().
+  void advance(const DynamicsParams& p);
+
+  /// Population edits (§3.4). Removal keeps the relative order of the survivors; returns
+  /// old → new index map (−1 for removed). Only Interior nodes may be removed.
+  std::vector<int> remove(const std::vector<char>& kill);
+  void addInterior(const Vec2& x, const Metric2& m);
+
+  /// The arc length of boundary node i along its loop (wrapped to [0, L)).
+  double arcLength(int i) const;
+
+private:
+  void setBounds();
+  const DomainGeometry* geo_;
+  NodeSet nodes_;
+  std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length and its clamp interval (Segment nodes)
+  std::vector<Vec2> vel_, force_;
+  std::vector<Metric2> metrics_;
+  bool metricsConstant_ = false;
+};
+
+} // namespace ablmg::mesher

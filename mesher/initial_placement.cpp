@@ -1,0 +1,336 @@
+#include "mesher/initial_placement.hpp"
+
+#include "core/error.hpp"
+#include "core/predicates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace ablmg::mesher {
+namespace {
+
+/// Does segment ab meet the axis-aligned box [lo, hi]? (conservative: true if unsure)
+bool segmentTouchesBox(const Vec2& a, const Vec2& b, const Vec2& lo, const Vec2& hi) {
+  if (std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x()) return false;
+  if (std::max(a.y(), b.y()) < lo.y() || std::min(a.y(), b.y()) > hi.y()) return false;
+  const Vec2 d = b - a;
+  const Vec2 c[4] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  int pos = 0, neg = 0;
+  for (const auto& q : c) {
+    const double s = cross(d, q - a);
+    pos += s >= 0;
+    neg += s <= 0;
+  }
+  return pos > 0 && neg > 0;
+}
+
+/// Half-open crossing of pq with ab: vertices on the line pq count on its positive side, so
+/// a path through a shared polyline vertex is counted exactly once or not at all.
+bool crossesHalfOpen(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  const bool sa = orient2d(p, q, a) >= 0, sb = orient2d(p, q, b) >= 0;
+  if (sa == sb) return false;
+  const int op = orient2d(a, b, p), oq = orient2d(a, b, q);
+  return op * oq < 0;
+}
+
+/// M^{-1/2} (symmetric root): maps the unit disk onto the unit-metric ellipse.
+Eigen::Matrix2d inverseSqrt(const Metric2& m) {
+  const MetricEigen e = m.eigen();
+  const double c = std::cos(e.theta), s = std::sin(e.theta);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  return r * Eigen::Vector2d(e.h1, e.h2).asDiagonal() * r.transpose();
+}
+
+} // namespace
+
+DomainGeometry::DomainGeometry(const Domain& domain) {
+  const auto& dl = domain.loops();
+  long nseg = 0;
+  lo_ = Vec2(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  hi_ = -lo_;
+  for (int l = 0; l < int(dl.size()); ++l) {
+    LoopPolyline p;
+    p.points = dl[l].points;
+    const int n = int(p.points.size());
+    p.tags = dl[l].tags.empty() ? std::vector<int>(n, 1) : dl[l].tags;
+    p.corners = domain.corners(l);
+    p.cum.assign(n + 1, 0.0);
+    for (int k = 0; k < n; ++k) {
+      p.cum[k + 1] = p.cum[k] + (p.points[(k + 1) % n] - p.points[k]).norm();
+      lo_ = lo_.cwiseMin(p.points[k]);
+      hi_ = hi_.cwiseMax(p.points[k]);
+      segs_.push_back({l, k});
+    }
+    p.length = p.cum[n];
+    nseg += n;
+    loops_.push_back(std::move(p));
+  }
+  const double diag = (hi_ - lo_).norm();
+  lo_ -= Vec2::Constant(1e-9 * diag);
+  hi_ += Vec2::Constant(1e-9 * diag);
+  const double boxArea = std::max((hi_ - lo_).prod(), 1e-300);
+  const double target = std::clamp(4.0 * double(nseg), 256.0, 4.0e6);
+  grid_ = BucketGrid(lo_, hi_, std::sqrt(boxArea / target), long(target) * 2);
+
+  std::vector<std::pair<int, int>> pairs;
+  for (int id = 0; id < int(segs_.size()); ++id) {
+    const auto& p = loops_[segs_[id].first];
+    const Vec2& a = p.points[segs_[id].second];
+    const Vec2& b = p.points[(segs_[id].second + 1) % p.points.size()];
+    const int x0 = grid_.cellX(std::min(a.x(), b.x())), x1 = grid_.cellX(std::max(a.x(), b.x()));
+    const int y0 = grid_.cellY(std::min(a.y(), b.y())), y1 = grid_.cellY(std::max(a.y(), b.y()));
+    const double cs = grid_.cellSize(), eps = 1e-9 * cs;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const Vec2 clo = grid_.lo() + Vec2(x * cs - eps, y * cs - eps), chi = clo + Vec2(cs + 2 * eps, cs + 2 * eps);
+        if (segmentTouchesBox(a, b, clo, chi)) pairs.push_back({y * grid_.nx() + x, id});
+      }
+  }
+  grid_.buildFromPairs(pairs);
+
+  // Cell-centre status: one horizontal scanline per grid row, crossing parity from the left.
+  centreInside_.assign(std::size_t(grid_.numCells()), 0);
+  std::vector<std::vector<double>> rowX(std::size_t(grid_.ny()));
+  const double cs = grid_.cellSize();
+  for (const auto& [l, k] : segs_) {
+    const auto& p = loops_[l];
+    const Vec2& a = p.points[k];
+    const Vec2& b = p.points[(k + 1) % p.points.size()];
+    const double ylo = std::min(a.y(), b.y()), yhi = std::max(a.y(), b.y());
+    const int r0 = std::max(0, int(std::ceil((ylo - lo_.y()) / cs - 0.5)) - 1);
+    const int r1 = std::min(grid_.ny() - 1, int(std::floor((yhi - lo_.y()) / cs - 0.5)) + 1);
+    for (int r = r0; r <= r1; ++r) {
+      const double y = lo_.y() + (r + 0.5) * cs;
+      if ((a.y() <= y && y < b.y()) || (b.y() <= y && y < a.y()))
+        rowX[r].push_back(a.x() + (y - a.y()) * (b.x() - a.x()) / (b.y() - a.y()));
+    }
+  }
+  for (int r = 0; r < grid_.ny(); ++r) {
+    auto& xs = rowX[r];
+    std::sort(xs.begin(), xs.end());
+    std::size_t m = 0;
+    for (int x = 0; x < grid_.nx(); ++x) {
+      const double xc = lo_.x() + (x + 0.5) * cs;
+      while (m < xs.size() && xs[m] < xc) ++m;
+      centreInside_[std::size_t(r) * grid_.nx() + x] = char(m % 2);
+    }
+  }
+}
+
+bool DomainGeometry::inside(const Vec2& p) const {
+  if (!(p.x() > lo_.x() && p.x() < hi_.x() && p.y() > lo_.y() && p.y() < hi_.y())) return false;
+  const int c = grid_.cellOf(p);
+  bool in = centreInside_[c] != 0;
+  const Vec2 q = grid_.cellCentre(c);
+  for (int id : grid_.cell(c)) {
+    const auto& poly = loops_[segs_[id].first];
+    const int k = segs_[id].second;
+    if (crossesHalfOpen(p, q, poly.points[k], poly.points[(k + 1) % poly.points.size()])) in = !in;
+  }
+  return in;
+}
+
+double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, double searchRadius) const {
+  double best = std::numeric_limits<double>::infinity();
+  grid_.forEach(p, searchRadius, [&](int id) {
+    const auto& poly = loops_[segs_[id].first];
+    const int k = segs_[id].second;
+    const Vec2& a = poly.points[k];
+    const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
+    const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
+    best = std::min(best, m.length(p - a - t * d));
+  });
+  return best;
+}
+
+double DomainGeometry::wrap(int l, double s) const {
+  const double L = loops_[l].length;
+  s = std::fmod(s, L);
+  if (s < 0) s += L;
+  return s;
+}
+
+int DomainGeometry::segmentAt(int l, double s) const {
+  const auto& p = loops_[l];
+  s = wrap(l, s);
+  const int n = int(p.points.size());
+  const int k = int(std::upper_bound(p.cum.begin(), p.cum.end(), s) - p.cum.begin()) - 1;
+  return std::clamp(k, 0, n - 1);
+}
+
+Vec2 DomainGeometry::pointAt(int l, double s) const {
+  const auto& p = loops_[l];
+  s = wrap(l, s);
+  const int k = segmentAt(l, s);
+  const Vec2& a = p.points[k];
+  const Vec2& b = p.points[(k + 1) % p.points.size()];
+  const double t = std::clamp((s - p.cum[k]) / (p.cum[k + 1] - p.cum[k]), 0.0, 1.0);
+  return a + t * (b - a);
+}
+
+Vec2 DomainGeometry::tangentAt(int l, double s) const {
+  const auto& p = loops_[l];
+  const int k = segmentAt(l, s);
+  return (p.points[(k + 1) % p.points.size()] - p.points[k]).normalized();
+}
+
+double DomainGeometry::indexArc(int l, double s) const {
+  const auto& p = loops_[l];
+  s = wrap(l, s);
+  const int k = segmentAt(l, s);
+  return k + std::clamp((s - p.cum[k]) / (p.cum[k + 1] - p.cum[k]), 0.0, 1.0 - 1e-15);
+}
+
+void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
+                        std::vector<double>& arcLength) {
+  for (int l = 0; l < int(geo.loops().size()); ++l) {
+    const auto& poly = geo.loops()[l];
+    const int n = int(poly.points.size());
+    // Fine table (Euclidean arc, metric arc) along the closed loop.
+    std::vector<Metric2> pm(n);
+    metric.evaluate(poly.points, pm);
+    std::vector<Vec2> sub;
+    std::vector<double> subS;
+    for (int k = 0; k < n; ++k) {
+      const Vec2& a = poly.points[k];
+      const Vec2& b = poly.points[(k + 1) % n];
+      const double est = edgeLength(a, pm[k], b, pm[(k + 1) % n]);
+      const int m = std::clamp(int(std::ceil(4 * est)), 1, 1 << 16);
+      for (int i = 0; i < m; ++i) {
+        sub.push_back(a + (double(i) / m) * (b - a));
+        subS.push_back(poly.cum[k] + (double(i) / m) * (poly.cum[k + 1] - poly.cum[k]));
+      }
+    }
+    sub.push_back(poly.points[0]);
+    subS.push_back(poly.length);
+    std::vector<Metric2> sm(sub.size());
+    metric.evaluate(sub, sm);
+    std::vector<double> sM(sub.size(), 0.0);
+    for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
+    const double LM = sM.back();
+    auto metricAt = [&](double s) {  // Euclidean arc (in [0, L]) → metric arc
+      const std::size_t i = std::clamp<std::size_t>(std::upper_bound(subS.begin(), subS.end(), s) - subS.begin(), 1, subS.size() - 1);
+      const double t = (s - subS[i - 1]) / std::max(subS[i] - subS[i - 1], 1e-300);
+      return sM[i - 1] + t * (sM[i] - sM[i - 1]);
+    };
+    auto euclidAt = [&](double t) {  // metric arc (wrapped) → Euclidean arc
+      t = std::fmod(t, LM);
+      if (t < 0) t += LM;
+      const std::size_t i = std::clamp<std::size_t>(std::upper_bound(sM.begin(), sM.end(), t) - sM.begin(), 1, sM.size() - 1);
+      const double f = (t - sM[i - 1]) / std::max(sM[i] - sM[i - 1], 1e-300);
+      return subS[i - 1] + f * (subS[i] - subS[i - 1]);
+    };
+    auto push = [&](NodeKind kind, double s) {
+      s = geo.wrap(l, s);
+      nodes.positions.push_back(geo.pointAt(l, s));
+      nodes.kinds.push_back(kind);
+      nodes.loops.push_back(l);
+      nodes.arc.push_back(geo.indexArc(l, s));
+      arcLength.push_back(s);
+    };
+    if (poly.corners.empty()) {
+      const int pieces = std::max(3, int(std::lround(LM)));
+      for (int i = 0; i < pieces; ++i) push(NodeKind::Segment, euclidAt(LM * i / pieces));
+      continue;
+    }
+    const int nc = int(poly.corners.size());
+    for (int c = 0; c < nc; ++c) {
+      const double s0 = poly.cum[poly.corners[c]];
+      const double s1 = c + 1 < nc ? poly.cum[poly.corners[c + 1]] : poly.cum[poly.corners[0]] + poly.length;
+      const double m0 = metricAt(s0);
+      const double m1 = s1 <= poly.length ? metricAt(s1) : metricAt(s1 - poly.length) + LM;
+      const int pieces = std::max(1, int(std::lround(m1 - m0)));
+      push(NodeKind::Vertex, s0);
+      for (int i = 1; i < pieces; ++i) push(NodeKind::Segment, euclidAt(m0 + (m1 - m0) * i / pieces));
+    }
+  }
+}
+
+void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, double spacingHint,
+                        const InteriorPlacementOptions& options) {
+  const auto [lo, hi] = geo.boundingBox();
+  BucketGrid grid(lo, hi, std::max(spacingHint, 1e-12 * (hi - lo).norm()), 1L << 23);
+  grid.clearIncremental(nodes.size() * 4);
+  const bool constant = metric.isConstant();
+  const Metric2 m0 = metric.at(0.5 * (lo + hi));
+  std::vector<Metric2> ms(nodes.size());
+  if (constant) std::fill(ms.begin(), ms.end(), m0);
+  else metric.evaluate(nodes.positions, ms);
+  for (int i = 0; i < nodes.size(); ++i) grid.insert(i, nodes.positions[i]);
+
+  auto metricAt = [&](const Vec2& p) { return constant ? m0 : metric.at(p); };
+  auto acceptable = [&](const Vec2& c, const Metric2& m) {
+    if (!geo.inside(c)) return false;
+    const double h1 = m.eigen().h1;
+    bool free = true;
+    const double r2 = options.minNodeDistance * options.minNodeDistance;
+    grid.forEachIncremental(c, options.minNodeDistance * h1, [&](int q) {
+      if (free && m.squaredLength(nodes.positions[q] - c) < r2) free = false;
+    });
+    if (!free) return false;
+    return geo.metricDistanceToBoundary(c, m, options.minWallDistance * h1) >= options.minWallDistance;
+  };
+  auto add = [&](const Vec2& c, const Metric2& m) {
+    const int id = nodes.size();
+    nodes.positions.push_back(c);
+    nodes.kinds.push_back(NodeKind::Interior);
+    nodes.loops.push_back(-1);
+    nodes.arc.push_back(-1.0);
+    ms.push_back(m);
+    grid.insert(id, c);
+    return id;
+  };
+
+  // Probe points (seeds), nearest to the box centre first.
+  const int g = 48;
+  std::vector<Vec2> probes;
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x) probes.push_back(lo + Vec2((x + 0.5) / g * (hi.x() - lo.x()), (y + 0.5) / g * (hi.y() - lo.y())));
+  const Vec2 mid = 0.5 * (lo + hi);
+  std::stable_sort(probes.begin(), probes.end(), [&](const Vec2& a, const Vec2& b) { return (a - mid).squaredNorm() < (b - mid).squaredNorm(); });
+
+  std::vector<Vec2> dirs;
+  for (int k = 0; k < 6; ++k) dirs.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
+  std::vector<int> queue;
+  for (const Vec2& probe : probes) {
+    const Metric2 mp = metricAt(probe);
+    if (!acceptable(probe, mp)) continue;
+    queue.assign(1, add(probe, mp));
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const int p = queue[head];
+      const Vec2 x = nodes.positions[p];
+      const Metric2 m = ms[p];
+      const Eigen::Matrix2d s = inverseSqrt(m);
+      for (const Vec2& d : dirs) {
+        const Vec2 c = x + s * d;
+        if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));
+      }
+    }
+  }
+}
+
+double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricField& metric, int g) {
+  const auto [lo, hi] = geo.boundingBox();
+  if (metric.isConstant()) return domain.area() * std::sqrt(metric.at(0.5 * (lo + hi)).det());
+  const Vec2 d = (hi - lo) / g;
+  std::vector<Vec2> pts;
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x) {
+      const Vec2 p = lo + Vec2((x + 0.5) * d.x(), (y + 0.5) * d.y());
+      if (geo.inside(p)) pts.push_back(p);
+    }
+  std::vector<Metric2> ms(pts.size());
+  metric.evaluate(pts, ms);
+  double sum = 0;
+  for (const auto& m : ms) sum += std::sqrt(m.det());
+  return sum * d.x() * d.y();
+}
+
+long predictedNodeCount(double metricAreaValue, long boundaryNodes, int holes) {
+  return std::lround(2.0 / std::sqrt(3.0) * metricAreaValue + 0.5 * double(boundaryNodes) + 1.0 - holes);
+}
+
+} // namespace ablmg::mesher

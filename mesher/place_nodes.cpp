@@ -1,0 +1,159 @@
+#include "mesher/place_nodes.hpp"
+
+#include "core/error.hpp"
+#include "mesher/adjacency.hpp"
+#include "mesher/bubble_system.hpp"
+#include "mesher/initial_placement.hpp"
+#include "mesher/population.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+namespace ablmg::mesher {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Restores the OpenMP thread count on scope exit.
+struct ThreadScope {
+  int saved;
+  explicit ThreadScope(int n) : saved(omp_get_max_threads()) {
+    if (n > 0) omp_set_num_threads(n);
+  }
+  ~ThreadScope() { omp_set_num_threads(saved); }
+};
+
+std::vector<BoundaryEdge> boundaryEdgesOf(const BubbleSystem& sys, const DomainGeometry& geo) {
+  std::vector<BoundaryEdge> edges;
+  const auto& nodes = sys.nodes();
+  for (int l = 0; l < int(geo.loops().size()); ++l) {
+    std::vector<int> ids;
+    for (int i = 0; i < nodes.size(); ++i)
+      if (nodes.loops[i] == l) ids.push_back(i);
+    std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) { return sys.arcLength(a) < sys.arcLength(b); });
+    const auto& poly = geo.loops()[l];
+    for (std::size_t k = 0; k < ids.size() && ids.size() >= 2; ++k) {
+      const int a = ids[k], b = ids[(k + 1) % ids.size()];
+      const double sa = sys.arcLength(a), sb = sys.arcLength(b);
+      double span = sb - sa;
+      if (span <= 0) span += poly.length;
+      const int seg = geo.segmentAt(l, sa + 0.5 * span);
+      edges.push_back({a, b, poly.tags[seg]});
+    }
+  }
+  return edges;
+}
+
+} // namespace
+
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
+  ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
+                "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got " << options.timeStep << ", "
+                                                                             << options.mass << ", " << options.damping);
+  ABLMG_REQUIRE(options.adjacencyRadius >= 1.5, "placeNodes: adjacencyRadius must be >= 1.5 (force range), got "
+                                                    << options.adjacencyRadius);
+  ThreadScope threads(options.threads);
+  PlacementResult result;
+  PlacementStats& st = result.stats;
+
+  // 1. Initial placement (§3.1), after checking the predicted size.
+  auto t = Clock::now();
+  DomainGeometry geo(domain);
+  const int holes = int(domain.loops().size()) - 1;
+  {
+    const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo, metric, 64);
+    ABLMG_REQUIRE(coarse <= double(options.maxNodes), "placeNodes: the metric asks for about " << long(coarse)
+                                                          << " nodes, more than maxNodes = " << options.maxNodes);
+  }
+  const double areaM = metricArea(domain, geo, metric, 256);
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, metric, nodes, arc);
+  st.predictedNodes = predictedNodeCount(areaM, nodes.size(), holes);
+  ABLMG_REQUIRE(st.predictedNodes <= options.maxNodes, "placeNodes: predicted node count " << st.predictedNodes
+                                                           << " exceeds maxNodes = " << options.maxNodes);
+  const double spacing = std::sqrt(domain.area() / std::max<double>(st.predictedNodes, 1.0));
+  placeInteriorNodes(geo, metric, nodes, spacing);
+  arc.resize(nodes.size(), -1.0);
+  BubbleSystem sys(geo, std::move(nodes), std::move(arc));
+  sys.updateMetrics(metric);
+  st.initialNodes = sys.size();
+  st.secondsInitial = since(t);
+
+  t = Clock::now();
+  AdjacencyLists adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+  st.secondsAdjacency += since(t);
+
+  // 2. Dynamics (§3.2) interleaved with population control (§3.4).
+  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep};
+  PopulationOptions pop;
+  pop.target = st.predictedNodes;
+  const int popEvery = 20;
+  const int popUntil = std::max(popEvery, int(0.7 * options.maxSteps));
+  int quietPasses = 0;
+  bool populationSettled = false;
+  const bool constant = metric.isConstant();
+
+  t = Clock::now();
+  double residual = sys.computeForces(adj, p);
+  st.secondsDynamics += since(t);
+  st.initialResidual = residual;
+  for (int step = 0; step < options.maxSteps; ++step) {
+    if (step > 0) {
+      t = Clock::now();
+      residual = sys.computeForces(adj, p);
+      st.secondsDynamics += since(t);
+    }
+    if (residual < options.tolerance && populationSettled) break;
+    t = Clock::now();
+    sys.advance(p);
+    if (!constant) sys.updateMetrics(metric);
+    ++st.steps;
+    st.secondsDynamics += since(t);
+
+    const int done = step + 1;
+    if (!populationSettled && done % popEvery == 0) {
+      t = Clock::now();
+      const PopulationChange c = adjustPopulation(sys, adj, geo, metric, pop);
+      st.inserted += c.inserted;
+      st.deleted += c.deleted;
+      st.secondsPopulation += since(t);
+      if (c.inserted + c.deleted > 0) {
+        quietPasses = 0;
+        t = Clock::now();
+        adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+        st.secondsAdjacency += since(t);
+        continue;
+      }
+      if (++quietPasses >= 2 || done >= popUntil) populationSettled = true;
+    }
+    if (!populationSettled && done >= popUntil) populationSettled = true;
+    if (done % std::max(1, options.adjacencyRefresh) == 0) {
+      t = Clock::now();
+      adj = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+      st.secondsAdjacency += since(t);
+    }
+  }
+  t = Clock::now();
+  st.finalResidual = sys.computeForces(adj, p);
+  st.secondsDynamics += since(t);
+  st.hitStepCap = st.steps >= options.maxSteps && st.finalResidual >= options.tolerance;
+
+  // 3. Output.
+  t = Clock::now();
+  sys.updateMetrics(metric);
+  result.adjacency = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+  st.secondsAdjacency += since(t);
+  result.boundaryEdges = boundaryEdgesOf(sys, geo);
+  result.metrics = sys.metrics();
+  result.nodes = sys.nodes();
+  st.finalNodes = result.nodes.size();
+  return result;
+}
+
+} // namespace ablmg::mesher

@@ -1,0 +1,114 @@
+#include "mesher/population.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+
+namespace ablmg::mesher {
+
+std::vector<double> overlapRatios(std::span<const Vec2> x, std::span<const Metric2> m, const AdjacencyLists& adj) {
+  const int n = adj.size();
+  std::vector<double> alpha(std::size_t(n), 0.0);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    double s = 0;
+    for (int j : adj.neighbours(i)) {
+      const Vec2 d = x[j] - x[i];
+      if (!(d.squaredNorm() > 0)) {
+        s += 3;  // coincident bubbles: full overlap (limit of 2 + a/b − 2a as a, b → 0)
+        continue;
+      }
+      const double a = std::sqrt(m[i].squaredLength(d)), b = std::sqrt(m[j].squaredLength(d));
+      s += std::max(0.0, 2.0 + a / b - 2.0 * a);  // eq. (9) term
+    }
+    alpha[i] = s;
+  }
+  return alpha;
+}
+
+PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, const DomainGeometry& geo,
+                                  const MetricField& metric, const PopulationOptions& o) {
+  PopulationChange change;
+  const int n = sys.size();
+  const auto& nodes = sys.nodes();
+  const auto& ms = sys.metrics();
+  const std::vector<double> alpha = overlapRatios(nodes.positions, ms, adj);
+
+  long deficit = o.target >= 0 ? o.target - n : 0;
+  const bool steerUp = o.target >= 0 && deficit > o.steerTolerance * o.target;
+  const bool steerDown = o.target >= 0 && -deficit > o.steerTolerance * o.target;
+  const double insBelow = steerUp ? o.steerInsertBelow : o.insertBelow;
+  const double delAbove = steerDown ? o.steerDeleteAbove : o.deleteAbove;
+
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<char> locked(n, 0), kill(n, 0);
+
+  // Deletions, most overlapped first.
+  std::vector<int> del;
+  for (int i = 0; i < n; ++i)
+    if (nodes.kinds[i] == NodeKind::Interior && alpha[i] > delAbove) del.push_back(i);
+  std::stable_sort(del.begin(), del.end(), [&](int a, int b) { return alpha[a] > alpha[b]; });
+  long delBudget = steerDown ? -deficit : std::numeric_limits<long>::max();
+  if (steerUp) delBudget = 0;  // never delete while short, except real overlaps below
+  for (int i : del) {
+    if (locked[i]) continue;
+    if (delBudget <= 0 && alpha[i] <= o.deleteAbove) continue;
+    kill[i] = 1;
+    locked[i] = 1;
+    for (int j : adj.neighbours(i)) locked[j] = 1;
+    ++change.deleted;
+    --delBudget;
+  }
+
+  // Insertions, emptiest first.
+  std::vector<int> ins;
+  for (int i = 0; i < n; ++i)
+    if (nodes.kinds[i] == NodeKind::Interior && alpha[i] < insBelow) ins.push_back(i);
+  std::stable_sort(ins.begin(), ins.end(), [&](int a, int b) { return alpha[a] < alpha[b]; });
+  long insBudget = steerUp ? deficit : std::numeric_limits<long>::max();
+  if (steerDown) insBudget = 0;
+  std::vector<std::pair<Vec2, Metric2>> added;
+  for (int i : ins) {
+    if (locked[i]) continue;
+    if (insBudget <= 0 && alpha[i] >= o.insertBelow) continue;
+    const Vec2 xi = nodes.positions[i];
+    const Metric2& mi = ms[i];
+    const MetricEigen e = mi.eigen();
+    const double c = std::cos(e.theta), s = std::sin(e.theta);
+    Vec2 best = xi;
+    double bestD = -1;
+    for (int k = 0; k < 12; ++k) {
+      const double t = k * std::numbers::pi / 6;
+      const Vec2 u(std::cos(t) * e.h1, std::sin(t) * e.h2);
+      const Vec2 cand = xi + Vec2(c * u.x() - s * u.y(), s * u.x() + c * u.y());
+      double dmin = std::numeric_limits<double>::infinity();
+      for (int j : adj.neighbours(i)) dmin = std::min(dmin, mi.length(nodes.positions[j] - cand));
+      if (dmin > bestD && geo.inside(cand) && geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) >= 0.5) {
+        bestD = dmin;
+        best = cand;
+      }
+    }
+    if (bestD < 0.75) continue;
+    added.push_back({best, mi});
+    locked[i] = 1;
+    for (int j : adj.neighbours(i)) locked[j] = 1;
+    ++change.inserted;
+    --insBudget;
+  }
+
+  if (change.deleted) sys.remove(kill);
+  if (!added.empty()) {
+    std::vector<Vec2> pts;
+    for (const auto& a : added) pts.push_back(a.first);
+    std::vector<Metric2> am(pts.size());
+    if (metric.isConstant()) std::fill(am.begin(), am.end(), added.front().second);
+    else metric.evaluate(pts, am);
+    for (std::size_t k = 0; k < pts.size(); ++k) sys.addInterior(pts[k], am[k]);
+  }
+  return change;
+}
+
+} // namespace ablmg::mesher
