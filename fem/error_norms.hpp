@@ -27,6 +27,9 @@ using GradientFn = std::function<Vec2(double x, double y)>;
 struct ExactSolution {
   ScalarFn u;
   GradientFn grad;  ///< may be empty: then h1 and elementH1 are not computed (NaN / empty)
+  /// True when u and grad may be called from several threads at once (pure lambdas, as
+  /// TestProblem's); computeErrors() then runs in parallel, with bitwise the same result.
+  bool threadSafe = false;
 };
 
 struct ErrorReport {

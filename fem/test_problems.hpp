@@ -35,7 +35,7 @@ struct TestProblem {
   GradientFn grad;
   ScalarFn f;  ///< −Δu
 
-  ExactSolution exact() const { return {u, grad}; }
+  ExactSolution exact() const { return {u, grad, true}; }
   /// κ = 1, f, Dirichlet data u on every boundary tag.
   PoissonProblem poisson() const;
 };
