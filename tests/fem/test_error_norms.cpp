@@ -40,3 +40,20 @@ TEST(ErrorNorms, SizeMismatchIsAnInputError) {
   const Mesh2 m = unitSquareMesh(2);
   EXPECT_THROW(computeErrors(m, Eigen::VectorXd::Zero(3), {[](double, double) { return 0.0; }, {}}), InputError);
 }
+
+TEST(ErrorNorms, ParallelIsBitwiseSerial) {
+  const Mesh2 m = unitSquareMesh(60, 0.2, 4);  // > 4096 triangles: the parallel path
+  ExactSolution ex{[](double x, double y) { return std::sin(7 * x) * std::cos(5 * y); },
+                   [](double x, double y) -> Vec2 {
+                     return Vec2(7 * std::cos(7 * x) * std::cos(5 * y), -5 * std::sin(7 * x) * std::sin(5 * y));
+                   },
+                   true};
+  const Eigen::VectorXd uh = Eigen::VectorXd::Constant(m.numVertices(), 0.1);
+  const ErrorReport a = computeErrors(m, uh, ex);
+  ex.threadSafe = false;
+  const ErrorReport b = computeErrors(m, uh, ex);
+  EXPECT_EQ(a.l2, b.l2);
+  EXPECT_EQ(a.h1, b.h1);
+  EXPECT_EQ(a.l2Interp, b.l2Interp);
+  EXPECT_EQ(a.elementH1, b.elementH1);
+}
