@@ -7,6 +7,7 @@
 #include "fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <numeric>
@@ -41,4 +42,16 @@ TEST(Ordering, ReducesFillBelowNaturalOrderAndNearCholmodsOwn) {
   // Natural (row-by-row) order of a 119² grid: a band of width ≈ 120, i.e. lnz ≈ 120 · n.
   EXPECT_LT(gnd.factorNonZeros, 0.5 * 120 * sys.A.rows());
   EXPECT_LT(gnd.factorNonZeros, 1.6 * cholmod.factorNonZeros);
+}
+
+TEST(Ordering, SameForAnyThreadCount) {
+  const Mesh2 m = unitSquareMesh(180, 0.2, 12);  // > 20000 unknowns: the parallel recursion
+  const LinearSystem sys = assemble(m, makeProblem("sine").poisson());
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const std::vector<int> one = geometricNestedDissection(sys.A, sys.dofPoints);
+  omp_set_num_threads(2);
+  const std::vector<int> two = geometricNestedDissection(sys.A, sys.dofPoints);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(one, two);
 }
