@@ -10,6 +10,7 @@
 /// points by assemble(), which throws InputError otherwise).
 #include <functional>
 #include <map>
+#include <type_traits>
 #include <vector>
 
 namespace ablmg::fem {
@@ -26,6 +27,11 @@ struct ScalarData {
   ScalarData() = default;
   ScalarData(double c) : constant(c) {}                              // NOLINT: implicit by design
   ScalarData(ScalarFn f) : fn(std::move(f)) {}                       // NOLINT
+  /// Any callable double(double, double), e.g. a lambda: `p.f = [](double x, double y) {…};`
+  template <class F, std::enable_if_t<std::is_invocable_r_v<double, F, double, double> &&
+                                          !std::is_convertible_v<F, double> && !std::is_same_v<F, ScalarFn>,
+                                      int> = 0>
+  ScalarData(F f) : fn(std::move(f)) {}  // NOLINT
   static ScalarData values(std::vector<double> v) {
     ScalarData d;
     d.vertexValues = std::move(v);

@@ -134,3 +134,15 @@ TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
   p.kappa = ScalarFn([](double x, double) { return x < 0.9 ? 1.0 : -1.0; });
   EXPECT_THROW(assemble(m, p), InputError);
 }
+
+TEST(PoissonProblem, LambdasConvertToScalarData) {
+  PoissonProblem p;
+  p.f = [](double x, double y) { return x + y; };
+  p.dirichlet[2] = [](double, double) { return 1.0; };
+  p.kappa = 2;
+  EXPECT_TRUE(p.f.isFunction());
+  EXPECT_EQ(p.f.fn(1, 2), 3.0);
+  EXPECT_TRUE(p.dirichlet[2].isFunction());
+  EXPECT_TRUE(p.kappa.isConstant());
+  EXPECT_EQ(p.kappa.constant, 2.0);
+}
