@@ -1,0 +1,256 @@
+#include "io/medit.hpp"
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/text_scanner.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <ostream>
+
+namespace ablmg::io {
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return r;
+}
+
+/// A count read from the file, bounded by what the file can possibly hold (each entry takes
+/// at least 2 bytes per number), so a garbage count cannot trigger a huge allocation.
+long readCount(TextScanner& s, const char* what, int numbersPerEntry) {
+  const long n = s.nextInt(what, 0, INT_MAX - 1);
+  ABLMG_REQUIRE(n <= long(s.size() / (2 * std::size_t(numbersPerEntry)) + 1),
+                s.where() << what << " " << n << " is more than the file can hold (truncated?)");
+  return n;
+}
+
+/// Skips the numbers of an unknown section up to the next keyword.
+void skipSection(TextScanner& s) {
+  while (!s.atEnd() && TextScanner::isNumber(s.peek())) s.next("number");
+}
+
+void readHeader(TextScanner& s, int& dim, bool dimRequired) {
+  ABLMG_REQUIRE(!s.atEnd(), s.name() << ":1: empty file, expected MeshVersionFormatted");
+  const auto kw = lower(s.next("MeshVersionFormatted"));
+  ABLMG_REQUIRE(kw == "meshversionformatted",
+                s.where() << "expected MeshVersionFormatted, got '" << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30))
+                          << "' (not a medit ASCII file?)");
+  s.nextInt("format version", 0, 3);
+  dim = 2;
+  if (!s.atEnd() && lower(s.peek()) == "dimension") {
+    s.next("Dimension");
+    dim = int(s.nextInt("dimension", 2, 3));
+  } else {
+    ABLMG_REQUIRE(!dimRequired, s.name() << ":" << s.line() << ": expected Dimension after MeshVersionFormatted");
+  }
+}
+
+} // namespace
+
+Mesh2 parseMesh(const std::string& text, const std::string& name) {
+  TextScanner s(text, name);
+  int dim = 2;
+  readHeader(s, dim, true);
+  Mesh2 mesh;
+  std::vector<int> vertexLine;  // line of each vertex (for z ≠ 0 messages)
+  bool haveVertices = false;
+  std::vector<double> zs;
+  while (!s.atEnd()) {
+    const auto kw = lower(s.next("section keyword"));
+    if (kw == "end") break;
+    if (kw == "vertices") {
+      ABLMG_REQUIRE(!haveVertices, s.where() << "second Vertices section");
+      haveVertices = true;
+      const long n = readCount(s, "vertex count", dim + 1);
+      mesh.vertices.reserve(n);
+      mesh.vertexRefs.reserve(n);
+      for (long i = 0; i < n; ++i) {
+        const double x = s.nextDouble("vertex x coordinate");
+        const double y = s.nextDouble("vertex y coordinate");
+        if (dim == 3) {
+          const double z = s.nextDouble("vertex z coordinate");
+          ABLMG_REQUIRE(z == 0.0, s.where() << "vertex " << i + 1 << " has z = " << z
+                                            << ": only planar meshes (Dimension 3 with all z = 0) are read");
+        }
+        mesh.vertices.emplace_back(x, y);
+        mesh.vertexRefs.push_back(int(s.nextInt("vertex reference", INT_MIN, INT_MAX)));
+      }
+    } else if (kw == "edges" || kw == "triangles") {
+      ABLMG_REQUIRE(haveVertices, s.where() << "section " << kw << " before Vertices");
+      const bool tri = kw == "triangles";
+      const int nv = tri ? 3 : 2;
+      const long n = readCount(s, tri ? "triangle count" : "edge count", nv + 1);
+      const long maxId = mesh.numVertices();
+      for (long i = 0; i < n; ++i) {
+        std::array<int, 3> v{0, 0, 0};
+        for (int k = 0; k < nv; ++k) {
+          const long id = s.nextInt("vertex index", LONG_MIN, LONG_MAX);
+          ABLMG_REQUIRE(id >= 1 && id <= maxId, s.where() << (tri ? "triangle " : "edge ") << i + 1 << ": vertex index " << id
+                                                          << " out of range [1, " << maxId << "]");
+          v[k] = int(id - 1);
+        }
+        const int ref = int(s.nextInt("reference", INT_MIN, INT_MAX));
+        if (tri) {
+          ABLMG_REQUIRE(v[0] != v[1] && v[1] != v[2] && v[0] != v[2],
+                        s.where() << "triangle " << i + 1 << " repeats a vertex (" << v[0] + 1 << ", " << v[1] + 1 << ", " << v[2] + 1 << ")");
+          mesh.triangles.push_back(v);
+          mesh.triangleRefs.push_back(ref);
+        } else {
+          ABLMG_REQUIRE(v[0] != v[1], s.where() << "edge " << i + 1 << " joins vertex " << v[0] + 1 << " to itself");
+          mesh.boundaryEdges.push_back({v[0], v[1], ref});
+        }
+      }
+    } else if (kw == "dimension" || kw == "meshversionformatted") {
+      ABLMG_REQUIRE(false, s.where() << "repeated header keyword '" << kw << "'");
+    } else {
+      ABLMG_REQUIRE(!TextScanner::isNumber(kw), s.where() << "expected a section keyword, got the number '" << kw.substr(0, 30) << "' (count mismatch?)");
+      ABLMG_REQUIRE(std::all_of(kw.begin(), kw.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
+                    s.where() << "expected a section keyword, got garbage");
+      skipSection(s);  // Corners, RequiredVertices, Ridges, Normals, Quadrilaterals, ...
+    }
+  }
+  ABLMG_REQUIRE(haveVertices, name << ": no Vertices section");
+  // Orientation: triangles counter-clockwise (the format does not fix one).
+  for (auto& t : mesh.triangles) {
+    const Vec2 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
+    if (cross(b - a, c - a) < 0) std::swap(t[1], t[2]);
+  }
+  // Boundary edges a→b with the domain on the left: the triangle using the edge runs a→b.
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) directed[{t[k], t[(k + 1) % 3]}]++;
+  for (auto& e : mesh.boundaryEdges)
+    if (!directed.count({e.a, e.b}) && directed.count({e.b, e.a})) std::swap(e.a, e.b);
+  return mesh;
+}
+
+Mesh2 readMesh(const std::string& path) { return parseMesh(readTextFile(path), path); }
+
+std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices) {
+  TextScanner s(text, name);
+  int dim = 2;
+  readHeader(s, dim, false);
+  while (!s.atEnd()) {
+    const auto kw = lower(s.next("SolAtVertices"));
+    if (kw == "end") break;
+    if (kw != "solatvertices") {
+      ABLMG_REQUIRE(!TextScanner::isNumber(kw) &&
+                        std::all_of(kw.begin(), kw.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
+                    s.where() << "expected a section keyword (SolAtVertices)");
+      skipSection(s);
+      continue;
+    }
+    const long n = readCount(s, "solution count", 1);
+    const int countLine = s.line();
+    if (expectedVertices >= 0)
+      ABLMG_REQUIRE(n == expectedVertices, name << ":" << countLine << ": " << n << " solution values but the mesh has "
+                                                << expectedVertices << " vertices");
+    const long nsol = s.nextInt("number of solution fields", 1, 64);
+    std::vector<int> types(nsol);
+    int perVertex = 0;
+    const int tensorSize = dim == 2 ? 3 : 6;
+    for (auto& t : types) {
+      t = int(s.nextInt("solution type (1 scalar, 2 vector, 3 tensor)", 1, 3));
+      perVertex += t == 1 ? 1 : t == 2 ? dim : tensorSize;
+    }
+    ABLMG_REQUIRE(types[0] == 1 || types[0] == 3,
+                  s.where() << "first solution field has type 2 (vector); a metric needs type 1 (size) or 3 (tensor)");
+    ABLMG_REQUIRE(n <= long(s.size() / (2 * std::size_t(perVertex)) + 1),
+                  name << ":" << countLine << ": solution count " << n << " is more than the file can hold (truncated?)");
+    std::vector<Metric2> out;
+    out.reserve(n);
+    std::vector<double> v(perVertex);
+    for (long i = 0; i < n; ++i) {
+      int firstLine = 0;
+      for (int k = 0; k < perVertex; ++k) {
+        v[k] = s.nextDouble(types[0] == 1 ? "size value" : "tensor entry");
+        if (k == 0) firstLine = s.line();
+      }
+      const std::string at = name + ":" + std::to_string(firstLine) + ": ";
+      if (types[0] == 1) {
+        ABLMG_REQUIRE(v[0] > 0, at << "size of vertex " << i + 1 << " is " << v[0] << ", must be > 0");
+        out.push_back(Metric2::isotropic(v[0]));
+      } else {
+        double m11 = v[0], m12 = v[1], m22 = v[2];
+        if (dim == 3) {
+          ABLMG_REQUIRE(v[2] == 0 && v[4] == 0, at << "tensor of vertex " << i + 1 << " has m13 = " << v[2] << ", m23 = " << v[4]
+                                                   << ": only planar (m13 = m23 = 0) metrics are read");
+          m22 = v[3];
+        }
+        const bool spd = m11 > 0 && m22 > 0 && m11 * m22 - m12 * m12 > 0;
+        ABLMG_REQUIRE(spd, at << "tensor of vertex " << i + 1 << " (" << m11 << ", " << m12 << ", " << m22 << ") is not positive definite");
+        out.push_back(Metric2::fromTensor(m11, m12, m22, at + "tensor of vertex " + std::to_string(i + 1)));
+      }
+    }
+    return out;
+  }
+  ABLMG_REQUIRE(false, name << ": no SolAtVertices section");
+  return {};
+}
+
+std::vector<Metric2> readSol(const std::string& path, int expectedVertices) {
+  return parseSol(readTextFile(path), path, expectedVertices);
+}
+
+namespace {
+void header(std::ostream& os, int dim) {
+  os << std::setprecision(17) << "MeshVersionFormatted 2\n\nDimension " << dim << "\n\n";
+}
+int refOr0(const std::vector<int>& refs, std::size_t i) { return i < refs.size() ? refs[i] : 0; }
+} // namespace
+
+void writeMesh(const std::string& path, const Mesh2& mesh) {
+  writeFileAtomically(path, [&](std::ostream& os) {
+    header(os, 2);
+    os << "Vertices\n" << mesh.vertices.size() << "\n";
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+      os << mesh.vertices[i].x() << " " << mesh.vertices[i].y() << " " << refOr0(mesh.vertexRefs, i) << "\n";
+    os << "\nEdges\n" << mesh.boundaryEdges.size() << "\n";
+    for (const auto& e : mesh.boundaryEdges) os << e.a + 1 << " " << e.b + 1 << " " << e.ref << "\n";
+    os << "\nTriangles\n" << mesh.triangles.size() << "\n";
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tr = mesh.triangles[t];
+      os << tr[0] + 1 << " " << tr[1] + 1 << " " << tr[2] + 1 << " " << refOr0(mesh.triangleRefs, t) << "\n";
+    }
+    os << "\nEnd\n";
+  });
+}
+
+void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
+                      const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& triangleRefs) {
+  writeFileAtomically(path, [&](std::ostream& os) {
+    header(os, 3);
+    os << "Vertices\n" << vertices.size() << "\n";
+    for (const auto& v : vertices) os << v.x() << " " << v.y() << " " << v.z() << " 0\n";
+    os << "\nTriangles\n" << triangles.size() << "\n";
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      os << triangles[t][0] + 1 << " " << triangles[t][1] + 1 << " " << triangles[t][2] + 1 << " " << refOr0(triangleRefs, t) << "\n";
+    os << "\nEnd\n";
+  });
+}
+
+void writeSol(const std::string& path, std::span<const Metric2> metrics) {
+  writeFileAtomically(path, [&](std::ostream& os) {
+    header(os, 2);
+    os << "SolAtVertices\n" << metrics.size() << "\n1 3\n\n";
+    for (const auto& m : metrics) os << m.m11() << " " << m.m12() << " " << m.m22() << "\n";
+    os << "\nEnd\n";
+  });
+}
+
+void writeScalarSol(const std::string& path, std::span<const double> values) {
+  writeFileAtomically(path, [&](std::ostream& os) {
+    header(os, 2);
+    os << "SolAtVertices\n" << values.size() << "\n1 1\n\n";
+    for (double v : values) os << v << "\n";
+    os << "\nEnd\n";
+  });
+}
+
+} // namespace ablmg::io

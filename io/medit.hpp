@@ -1,0 +1,54 @@
+#pragma once
+/// medit ASCII .mesh / .sol files (the format of MMG, FreeFem++, Gmsh "medit" export).
+///
+/// Reading (`.mesh`): `MeshVersionFormatted` 0, 1 or 2, `Dimension` 2 (or 3 when every z is 0),
+/// `Vertices` (x y [z] ref), `Edges` (a b ref), `Triangles` (a b c ref), `End`. Keywords are
+/// case-insensitive, `#` starts a comment, and unknown sections (Corners, RequiredVertices,
+/// Ridges, Normals, Quadrilaterals, ...) are skipped. Indices in files are 1-based; Mesh2 is
+/// 0-based. Clockwise triangles are reoriented counter-clockwise; boundary edges lying in one
+/// triangle are oriented with the domain on their left (Mesh2's convention). The result is not
+/// validated (call Mesh2::validate / requireValid if needed).
+///
+/// Reading (`.sol`): `SolAtVertices`, N, then "nsol type..." (first field used), type 1 =
+/// scalar size h → Metric2::isotropic(h), type 3 = symmetric tensor m11 m12 m22 (MMG order; in
+/// Dimension 3 m11 m12 m13 m22 m23 m33 with m13 = m23 = 0). An optional `Dimension` line
+/// (FreeFem writes one) defaults to 2.
+///
+/// Every error is an ablmg::InputError "<file>:<line>: <problem>" (truncated file, non-finite
+/// number, index out of range, non-positive size, non-SPD tensor, count mismatch). Garbage
+/// input throws, never crashes.
+///
+/// Writing: `MeshVersionFormatted 2`, `Dimension 2` (or 3 for surfaces), 17 significant digits,
+/// atomically (temporary file + rename), readable by MMG, FreeFem++ and Gmsh.
+#include "core/mesh2.hpp"
+#include "core/metric2.hpp"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ablmg::io {
+
+/// Reads a 2D medit mesh. Throws InputError naming file:line.
+Mesh2 readMesh(const std::string& path);
+/// Same, from text in memory; `name` is used in messages (for tests and fuzzing).
+Mesh2 parseMesh(const std::string& text, const std::string& name);
+
+/// Reads per-vertex metrics. If expectedVertices ≥ 0 the count must match (error names both).
+std::vector<Metric2> readSol(const std::string& path, int expectedVertices = -1);
+std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices = -1);
+
+/// Writes Vertices (with vertexRefs or 0), Edges (boundaryEdges with refs), Triangles (refs or 0).
+void writeMesh(const std::string& path, const Mesh2& mesh);
+/// Surface mesh: Dimension 3, Vertices (x y z 0), Triangles (refs or 0).
+void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
+                      const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& triangleRefs = {});
+/// Tensor .sol (type 3, m11 m12 m22), one per vertex.
+void writeSol(const std::string& path, std::span<const Metric2> metrics);
+/// Scalar .sol (type 1), one value per vertex (e.g. sizes h, or a P1 solution).
+void writeScalarSol(const std::string& path, std::span<const double> values);
+
+} // namespace ablmg::io
