@@ -53,7 +53,7 @@ void BubbleSystem::setBounds() {
 
 double BubbleSystem::arcLength(int i) const { return nodes_.loops[i] < 0 ? -1.0 : geo_->wrap(nodes_.loops[i], s_[i]); }
 
-void BubbleSystem::updateMetrics(const MetricField& field) {
+void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazyDistance) {
   metrics_.resize(std::size_t(nodes_.size()));
   if (field.isConstant()) {
     if (!metricsConstant_ || metrics_.empty()) {
@@ -64,7 +64,25 @@ void BubbleSystem::updateMetrics(const MetricField& field) {
     }
     return;
   }
-  field.evaluate(nodes_.positions, metrics_);
+  const int n = nodes_.size();
+  if (all || int(evalPos_.size()) != n) {
+    field.evaluate(nodes_.positions, metrics_);
+    evalPos_ = nodes_.positions;
+    return;
+  }
+  std::vector<int> stale;
+  const double t2 = lazyDistance * lazyDistance;
+  for (int i = 0; i < n; ++i)
+    if (metrics_[i].squaredLength(nodes_.positions[i] - evalPos_[i]) > t2) stale.push_back(i);
+  if (stale.empty()) return;
+  std::vector<Vec2> pts(stale.size());
+  std::vector<Metric2> ms(stale.size());
+  for (std::size_t k = 0; k < stale.size(); ++k) pts[k] = nodes_.positions[stale[k]];
+  field.evaluate(pts, ms);
+  for (std::size_t k = 0; k < stale.size(); ++k) {
+    metrics_[stale[k]] = ms[k];
+    evalPos_[stale[k]] = pts[k];
+  }
 }
 
 double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsParams& p) {
@@ -78,12 +96,14 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
     Vec2 f = Vec2::Zero();
     if (nodes_.kinds[i] != NodeKind::Vertex) {
       const Metric2& mi = metrics_[i];
+      const bool segment = nodes_.kinds[i] == NodeKind::Segment;
       for (int j : adj.neighbours(i)) {
+        if (segment && nodes_.loops[j] != nodes_.loops[i]) continue;  // 1D packing along the loop
         const Vec2 d = x[j] - x[i];
         const double l2 = d.squaredNorm();
         if (!(l2 > 0)) continue;
         const double a = std::sqrt(mi.squaredLength(d)), b = std::sqrt(metrics_[j].squaredLength(d));
-        const double w = 2.0 / (1.0 / a + 1.0 / b);
+        const double w = 2.0 / (1.0 / a + 1.0 / b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
         const double fw = interBubbleForce(w, p.k0);
         if (fw == 0.0) continue;
         const double l = std::sqrt(l2);
@@ -157,6 +177,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     vel_[m] = vel_[i];
     force_[m] = force_[i];
     metrics_[m] = metrics_[i];
+    if (i < int(evalPos_.size())) evalPos_[m] = evalPos_[i];
     ++m;
   }
   nodes_.positions.resize(m);
@@ -169,6 +190,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   vel_.resize(m);
   force_.resize(m);
   metrics_.resize(m);
+  if (int(evalPos_.size()) > m) evalPos_.resize(m);
   return map;
 }
 
@@ -183,6 +205,7 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   vel_.push_back(Vec2::Zero());
   force_.push_back(Vec2::Zero());
   metrics_.push_back(m);
+  if (evalPos_.size() + 1 == metrics_.size()) evalPos_.push_back(x);
 }
 
 } // namespace ablmg::mesher

@@ -8,7 +8,10 @@
 /// coordinates, so Δt, m, c, k0 are dimensionless and the §6 defaults work for any size h.
 /// In metric terms w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}), no trigonometry.
 ///
-/// Constraints: Vertex nodes never move; Segment nodes keep only the tangential part of their
+/// Constraints: Vertex nodes never move; Segment nodes feel only the bubbles of their own loop
+/// (the boundary is packed as a 1D chain first, so boundary edges keep unit metric length
+/// instead of being dragged by the interior: sliding under interior forces left boundary
+/// edges in [0.79, 1.28] on the disk), keep only the tangential part of their
 /// velocity and slide along their loop's polyline by arc length, clamped strictly between the
 /// two corners around them (corner-less loops wrap); an Interior node's move that would leave
 /// the domain is rejected (position kept, velocity zeroed), so no bubble ever leaves it.
@@ -26,7 +29,7 @@
 namespace ablmg::mesher {
 
 struct DynamicsParams {
-  double k0 = 1.0, mass = 1.0, damping = 3.8429, dt = 0.02;  ///< paper §6
+  double k0 = 1.0, mass = 1.0, damping = 1.0, dt = 0.3;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
 };
 
 class BubbleSystem {
@@ -40,9 +43,11 @@ public:
   const std::vector<Vec2>& velocities() const { return vel_; }
   int size() const { return nodes_.size(); }
 
-  /// Evaluate M at every position (serially: AnalyticMetricField is not thread-safe; once
-  /// for a constant field).
-  void updateMetrics(const MetricField& field);
+  /// Evaluate M at the positions (serially: AnalyticMetricField is not thread-safe; once for
+  /// a constant field). Lazy unless `all`: only bubbles that moved more than `lazyDistance`
+  /// metric units since their last evaluation are re-evaluated (at most once per step; the
+  /// metric then lags by < 0.05 h·|∇h|/h, and the final metrics are always evaluated exactly).
+  void updateMetrics(const MetricField& field, bool all = true, double lazyDistance = 0.05);
   /// Net forces (eq. 6) from the lists; returns the residual defined above.
   double computeForces(const AdjacencyLists& adj, const DynamicsParams& p);
   /// One Euler step using the forces of the last computeForces().
@@ -63,6 +68,7 @@ private:
   std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length and its clamp interval (Segment nodes)
   std::vector<Vec2> vel_, force_;
   std::vector<Metric2> metrics_;
+  std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated
   bool metricsConstant_ = false;
 };
 

@@ -93,8 +93,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep};
   PopulationOptions pop;
   pop.target = st.predictedNodes;
-  const int popEvery = 20;
-  const int popUntil = std::max(popEvery, int(0.7 * options.maxSteps));
+  const int popEvery = 10;
+  const int popUntil = std::max(popEvery, int(0.6 * options.maxSteps));
   int quietPasses = 0;
   bool populationSettled = false;
   const bool constant = metric.isConstant();
@@ -112,7 +112,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     if (residual < options.tolerance && populationSettled) break;
     t = Clock::now();
     sys.advance(p);
-    if (!constant) sys.updateMetrics(metric);
+    if (!constant) sys.updateMetrics(metric, false);
     ++st.steps;
     st.secondsDynamics += since(t);
 

@@ -36,6 +36,13 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   const auto& ms = sys.metrics();
   const std::vector<double> alpha = overlapRatios(nodes.positions, ms, adj);
 
+  std::vector<double> nearest(std::size_t(n), std::numeric_limits<double>::infinity());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i)
+    for (int j : adj.neighbours(i)) {
+      const Vec2 d = nodes.positions[j] - nodes.positions[i];
+      nearest[i] = std::min(nearest[i], std::sqrt(0.5 * (ms[i].squaredLength(d) + ms[j].squaredLength(d))));
+    }
   long deficit = o.target >= 0 ? o.target - n : 0;
   const bool steerUp = o.target >= 0 && deficit > o.steerTolerance * o.target;
   const bool steerDown = o.target >= 0 && -deficit > o.steerTolerance * o.target;
@@ -49,13 +56,14 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   // Deletions, most overlapped first.
   std::vector<int> del;
   for (int i = 0; i < n; ++i)
-    if (nodes.kinds[i] == NodeKind::Interior && alpha[i] > delAbove) del.push_back(i);
+    if (nodes.kinds[i] == NodeKind::Interior && (alpha[i] > delAbove || (alpha[i] > o.squeezeAlpha && nearest[i] < o.squeezeBelow)))
+      del.push_back(i);
   std::stable_sort(del.begin(), del.end(), [&](int a, int b) { return alpha[a] > alpha[b]; });
   long delBudget = steerDown ? -deficit : std::numeric_limits<long>::max();
   if (steerUp) delBudget = 0;  // never delete while short, except real overlaps below
   for (int i : del) {
     if (locked[i]) continue;
-    if (delBudget <= 0 && alpha[i] <= o.deleteAbove) continue;
+    if (delBudget <= 0 && alpha[i] <= o.deleteAbove && nearest[i] >= o.squeezeBelow) continue;
     kill[i] = 1;
     locked[i] = 1;
     for (int j : adj.neighbours(i)) locked[j] = 1;
@@ -91,7 +99,7 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
         best = cand;
       }
     }
-    if (bestD < 0.75) continue;
+    if (bestD < o.minGap) continue;
     added.push_back({best, mi});
     locked[i] = 1;
     for (int j : adj.neighbours(i)) locked[j] = 1;

@@ -33,9 +33,11 @@ std::vector<double> overlapRatios(std::span<const Vec2> positions, std::span<con
                                   const AdjacencyLists& adj);
 
 struct PopulationOptions {
-  double deleteAbove = 8.0, insertBelow = 4.0;
+  double deleteAbove = 8.0, insertBelow = 5.3;
+  double squeezeBelow = 0.8, squeezeAlpha = 6.3;  ///< also delete where the nearest neighbour is closer than this and α above that
+  double minGap = 0.85;  ///< an insertion point must be at least this far (metric) from the node's neighbours
   double steerDeleteAbove = 6.7, steerInsertBelow = 5.3;
-  double steerTolerance = 0.003;
+  double steerTolerance = 0.01;
   long target = -1;  ///< N*; < 0 = no steering
 };
 
