@@ -1,0 +1,289 @@
+// ablmg solve CONFIG.json: P1 Poisson solve on a mesh → solution .vtu + error report .json.
+//
+// The config (every key optional unless marked; an unknown key is an error naming its path):
+//   {
+//     "mesh": "square.mesh"                       medit file (relative to the config's folder), or
+//     "mesh": {"structured": {"nx": 64, "ny": 64, "perturbation": 0.0, "seed": 1},
+//              "domain": [x0, y0, x1, y1]}        structured mesh of that rectangle, or of the
+//                                                 problem's own domain when "domain" is absent
+//     "problem": "wavefront", "params": {"alpha": 50}     a library problem (fem/test_problems), or
+//     "problem": {"kappa": "1", "f": "2*pi^2*sin(pi*x)*sin(pi*y)",
+//                 "dirichlet": {"1": "0", "default": "0"},   per boundary tag, "default" = all others
+//                 "neumann": {"3": "0"},                      flux κ ∂u/∂n per tag
+//                 "exact": {"u": "...", "ux": "...", "uy": "..."}}   optional, for errors
+//     "solver": {"ordering": "geometric" | "cholmod"},
+//     "output": {"vtu": "solution.vtu", "report": "report.json", "sol": "u.sol"}
+//                                                 (vtu, report default next to the config; sol
+//                                                 — u_h as a medit scalar .sol — only if given)
+//   }
+// Expressions are muparser in x, y (constants pi, e).
+#include "cli/command.hpp"
+#include "core/error.hpp"
+#include "fem/error_norms.hpp"
+#include "fem/solve.hpp"
+#include "fem/structured_mesh.hpp"
+#include "fem/test_problems.hpp"
+#include "io/atomic_file.hpp"
+#include "io/medit.hpp"
+#include "io/vtu.hpp"
+
+#include <muParser.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <numbers>
+
+namespace ablmg::cli {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+/// A muparser expression in x, y as a ScalarFn. Checked once at (0.5, 0.5) when built.
+fem::ScalarFn expression(const std::string& text, const std::string& where) {
+  struct Expr {
+    mu::Parser parser;
+    double x = 0, y = 0;
+  };
+  auto e = std::make_shared<Expr>();
+  try {
+    e->parser.DefineVar("x", &e->x);
+    e->parser.DefineVar("y", &e->y);
+    e->parser.DefineConst("pi", std::numbers::pi);
+    e->parser.DefineConst("e", std::numbers::e);
+    e->parser.SetExpr(text);
+    e->x = e->y = 0.5;
+    e->parser.Eval();
+  } catch (const mu::Parser::exception_type& ex) {
+    ABLMG_REQUIRE(false, where << ": bad expression '" << text << "': " << ex.GetMsg());
+  }
+  return [e](double x, double y) {
+    e->x = x;
+    e->y = y;
+    return e->parser.Eval();
+  };
+}
+
+/// An expression given as a JSON string or number.
+fem::ScalarFn expressionOf(const json& j, const std::string& where) {
+  if (j.is_number()) {
+    const double c = j.get<double>();
+    return [c](double, double) { return c; };
+  }
+  ABLMG_REQUIRE(j.is_string(), where << ": expected an expression string or a number, got " << j.type_name());
+  return expression(j.get<std::string>(), where);
+}
+
+void requireKeys(const json& j, const std::string& where, std::initializer_list<const char*> allowed) {
+  ABLMG_REQUIRE(j.is_object(), where << ": expected an object, got " << j.type_name());
+  for (const auto& [key, value] : j.items()) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || key == a;
+    if (!ok) {
+      std::string list;
+      for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+      ABLMG_REQUIRE(false, where << ": unknown key '" << key << "' (valid: " << list << ")");
+    }
+  }
+}
+
+int tagOf(const std::string& key, const std::string& where) {
+  std::size_t used = 0;
+  int tag = 0;
+  try {
+    tag = std::stoi(key, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  ABLMG_REQUIRE(used == key.size() && !key.empty(), where << ": boundary tag '" << key << "' is not an integer");
+  return tag;
+}
+
+struct Setup {
+  fem::PoissonProblem problem;
+  fem::ExactSolution exact;  ///< empty u when unknown
+  std::optional<Domain> domain;
+  json echo;                 ///< the resolved problem, for the report
+};
+
+Setup problemOf(const json& config, const std::string& src) {
+  Setup s;
+  const json& p = config.at("problem");
+  if (p.is_string()) {
+    std::map<std::string, double> params;
+    if (config.contains("params")) {
+      ABLMG_REQUIRE(config["params"].is_object(), src << ": params: expected an object");
+      for (const auto& [k, v] : config["params"].items()) {
+        ABLMG_REQUIRE(v.is_number(), src << ": params." << k << ": expected a number, got " << v.type_name());
+        params[k] = v.get<double>();
+      }
+    }
+    const fem::TestProblem tp = fem::makeProblem(p.get<std::string>(), params);
+    s.problem = tp.poisson();
+    s.exact = tp.exact();
+    s.domain = tp.domain;
+    s.echo = {{"name", tp.name}, {"u", tp.formula}, {"params", tp.params}};
+    return s;
+  }
+  ABLMG_REQUIRE(!config.contains("params"), src << ": params: only for a named problem");
+  const std::string w = src + ": problem";
+  requireKeys(p, w, {"kappa", "f", "dirichlet", "neumann", "exact"});
+  if (p.contains("kappa")) s.problem.kappa = expressionOf(p["kappa"], w + ".kappa");
+  if (p.contains("f")) s.problem.f = expressionOf(p["f"], w + ".f");
+  if (p.contains("dirichlet")) {
+    ABLMG_REQUIRE(p["dirichlet"].is_object(), w << ".dirichlet: expected an object {tag: expression}");
+    for (const auto& [k, v] : p["dirichlet"].items()) {
+      if (k == "default")
+        s.problem.setDirichletEverywhere(expressionOf(v, w + ".dirichlet.default"));
+      else
+        s.problem.dirichlet[tagOf(k, w + ".dirichlet")] = expressionOf(v, w + ".dirichlet." + k);
+    }
+  }
+  if (p.contains("neumann")) {
+    ABLMG_REQUIRE(p["neumann"].is_object(), w << ".neumann: expected an object {tag: expression}");
+    for (const auto& [k, v] : p["neumann"].items())
+      s.problem.neumann[tagOf(k, w + ".neumann")] = expressionOf(v, w + ".neumann." + k);
+  }
+  if (p.contains("exact")) {
+    const json& e = p["exact"];
+    requireKeys(e, w + ".exact", {"u", "ux", "uy"});
+    ABLMG_REQUIRE(e.contains("u"), w << ".exact: needs u");
+    s.exact.u = expressionOf(e["u"], w + ".exact.u");
+    if (e.contains("ux") || e.contains("uy")) {
+      ABLMG_REQUIRE(e.contains("ux") && e.contains("uy"), w << ".exact: give both ux and uy");
+      auto ux = expressionOf(e["ux"], w + ".exact.ux"), uy = expressionOf(e["uy"], w + ".exact.uy");
+      s.exact.grad = [ux, uy](double x, double y) -> Vec2 { return Vec2(ux(x, y), uy(x, y)); };
+    }
+  }
+  s.echo = p;
+  return s;
+}
+
+Mesh2 meshOf(const json& config, const Setup& setup, const fs::path& base, const std::string& src, json& echo) {
+  ABLMG_REQUIRE(config.contains("mesh"), src << ": mesh: missing (a .mesh file or {\"structured\": ...})");
+  const json& m = config["mesh"];
+  if (m.is_string()) {
+    const fs::path file = base / m.get<std::string>();
+    echo = file.string();
+    return io::readMesh(file.string());
+  }
+  requireKeys(m, src + ": mesh", {"structured", "domain"});
+  ABLMG_REQUIRE(m.contains("structured"), src << ": mesh: needs \"structured\" (or give a file name)");
+  const json& st = m["structured"];
+  requireKeys(st, src + ": mesh.structured", {"nx", "ny", "perturbation", "seed"});
+  const int nx = st.value("nx", 32), ny = st.value("ny", nx);
+  const double perturbation = st.value("perturbation", 0.0);
+  const std::uint64_t seed = st.value("seed", std::uint64_t(1));
+  Domain domain;
+  if (m.contains("domain")) {
+    const json& d = m["domain"];
+    ABLMG_REQUIRE(d.is_array() && d.size() == 4, src << ": mesh.domain: expected [x0, y0, x1, y1]");
+    domain = Domain::rectangle(d[0].get<double>(), d[1].get<double>(), d[2].get<double>(), d[3].get<double>());
+  } else {
+    ABLMG_REQUIRE(setup.domain.has_value(), src << ": mesh.domain: needed for an expression problem");
+    domain = *setup.domain;
+  }
+  echo = {{"structured", {{"nx", nx}, {"ny", ny}, {"perturbation", perturbation}, {"seed", seed}}}};
+  return fem::structuredMesh(domain, nx, ny, perturbation, seed);
+}
+
+int runSolve(const std::vector<std::string>& args) {
+  if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h")) {
+    std::cout << "usage: ablmg solve CONFIG.json\n"
+                 "  P1 finite elements for -div(kappa grad u) = f, CHOLMOD; writes the solution (.vtu)\n"
+                 "  and a JSON report (unknowns, times, errors when the exact solution is known).\n"
+                 "  See the comment at the top of cli/cmd_solve.cpp for the config keys.\n";
+    return 0;
+  }
+  ABLMG_REQUIRE(args.size() == 1, "usage: ablmg solve CONFIG.json (got " << args.size() << " arguments)");
+  const std::string src = args[0];
+  std::ifstream in(src);
+  ABLMG_REQUIRE(in, src << ": cannot open");
+  json config;
+  try {
+    config = json::parse(in);
+  } catch (const json::parse_error& e) {
+    ABLMG_REQUIRE(false, src << ": invalid JSON: " << e.what());
+  }
+  requireKeys(config, src, {"mesh", "problem", "params", "solver", "output"});
+  ABLMG_REQUIRE(config.contains("problem"), src << ": problem: missing");
+  const fs::path base = fs::path(src).parent_path();
+
+  // 1. Problem and mesh.
+  const Setup setup = problemOf(config, src);
+  json meshEcho;
+  const Mesh2 mesh = meshOf(config, setup, base, src, meshEcho);
+  mesh.requireValid(src + ": mesh");
+
+  // 2. Solver options.
+  fem::SolveOptions options;
+  std::string ordering = "geometric";
+  if (config.contains("solver")) {
+    requireKeys(config["solver"], src + ": solver", {"ordering"});
+    ordering = config["solver"].value("ordering", ordering);
+    ABLMG_REQUIRE(ordering == "geometric" || ordering == "cholmod",
+                  src << ": solver.ordering: '" << ordering << "' (valid: geometric, cholmod)");
+    options.ordering = ordering == "geometric" ? fem::Ordering::GeometricNestedDissection : fem::Ordering::Cholmod;
+  }
+  std::string vtuPath = (base / "solution.vtu").string(), reportPath = (base / "report.json").string(), solPath;
+  if (config.contains("output")) {
+    requireKeys(config["output"], src + ": output", {"vtu", "report", "sol"});
+    if (config["output"].contains("sol")) solPath = (base / config["output"]["sol"].get<std::string>()).string();
+    if (config["output"].contains("vtu")) vtuPath = (base / config["output"]["vtu"].get<std::string>()).string();
+    if (config["output"].contains("report"))
+      reportPath = (base / config["output"]["report"].get<std::string>()).string();
+  }
+  json report = {{"config", src},
+                  {"resolved", {{"mesh", meshEcho}, {"problem", setup.echo}, {"solver", {{"ordering", ordering}}},
+                                {"output", {{"vtu", vtuPath}, {"report", reportPath}, {"sol", solPath}}}}}};
+  std::cout << "ablmg solve: " << report["resolved"].dump() << "\n";
+
+  // 3. Assemble and solve.
+  const fem::PoissonSolution sol = fem::solvePoisson(mesh, setup.problem, options);
+  report["mesh"] = {{"vertices", mesh.numVertices()}, {"triangles", mesh.numTriangles()}};
+  report["solve"] = {{"unknowns", sol.stats.unknowns},
+                     {"nonzeros", sol.stats.nonZeros},
+                     {"factor_nonzeros", sol.stats.factorNonZeros},
+                     {"dirichlet_vertices", sol.stats.dirichletVertices},
+                     {"t_assembly", sol.stats.assemblySeconds},
+                     {"t_solve", sol.stats.solveSeconds},
+                     {"relative_residual", sol.stats.residual}};
+  std::printf("N=%d unknowns=%d nnz=%ld t_assembly=%.3fs t_solve=%.3fs\n", mesh.numVertices(), sol.stats.unknowns,
+              sol.stats.nonZeros, sol.stats.assemblySeconds, sol.stats.solveSeconds);
+
+  // 4. Errors against the exact solution, when known.
+  std::vector<io::Field> pointFields{{"u_h", 1, std::vector<double>(sol.u.data(), sol.u.data() + sol.u.size())}};
+  std::vector<io::Field> cellFields;
+  if (setup.exact.u) {
+    const fem::ErrorReport err = fem::computeErrors(mesh, sol.u, setup.exact);
+    report["errors"] = {{"l2", err.l2}, {"l2_interp", err.l2Interp}, {"max_vertex", err.maxVertex}};
+    if (setup.exact.grad) report["errors"]["h1"] = err.h1;
+    std::printf("L2=%.4e max=%.4e L2(I_h u)=%.4e", err.l2, err.maxVertex, err.l2Interp);
+    if (setup.exact.grad) std::printf(" H1=%.4e", err.h1);
+    std::printf("\n");
+    const Eigen::VectorXd ui = fem::interpolate(mesh, setup.exact.u);
+    std::vector<double> diff(ui.size());
+    for (Eigen::Index v = 0; v < ui.size(); ++v) diff[v] = sol.u[v] - ui[v];
+    pointFields.push_back({"u_exact", 1, std::vector<double>(ui.data(), ui.data() + ui.size())});
+    pointFields.push_back({"u_h_minus_u", 1, std::move(diff)});
+    cellFields.push_back({"error_l2", 1, err.elementL2});
+    if (setup.exact.grad) cellFields.push_back({"error_h1", 1, err.elementH1});
+  }
+
+  // 5. Outputs.
+  io::writeVtu(vtuPath, mesh, pointFields, cellFields);
+  if (!solPath.empty()) io::writeScalarSol(solPath, std::span<const double>(sol.u.data(), std::size_t(sol.u.size())));
+  io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
+  std::cout << "wrote " << vtuPath << (solPath.empty() ? "" : ", " + solPath) << " and " << reportPath << "\n";
+  return 0;
+}
+
+} // namespace
+} // namespace ablmg::cli
+
+ABLMG_COMMAND("solve", "P1 Poisson solve (CHOLMOD): mesh + problem -> solution .vtu + error report", ablmg::cli::runSolve)
