@@ -7,8 +7,21 @@
 
 #include <chrono>
 
+// OpenBLAS's thread-count setter, if the BLAS loaded at run time is OpenBLAS (weak: null
+// otherwise, e.g. with the reference BLAS, which is single-threaded anyway).
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
 namespace ablmg::fem {
 namespace {
+
+/// OpenBLAS's threaded dpotrf rounds differently for each thread count, so the factorisation
+/// always runs with this many BLAS threads: the same bits whatever OMP_NUM_THREADS or
+/// OPENBLAS_NUM_THREADS say (this machine has 2 cores).
+constexpr int kBlasThreads = 2;
+
+void fixBlasThreads() {
+  if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
+}
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -19,6 +32,7 @@ using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen:
 /// Factorises M with CHOLMOD; InputError if M is not SPD.
 void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
   llt.cholmod().print = 0;  // libraries never print: CHOLMOD's warnings become our InputError
+  fixBlasThreads();
   llt.compute(M);
   ABLMG_REQUIRE(llt.info() == Eigen::Success,
                 "solve: CHOLMOD could not factorise the " << M.rows() << "×" << M.rows()

@@ -10,6 +10,10 @@
 /// (CHOLMOD's supernodal kernels need an optimised BLAS: with Debian's reference BLAS the
 /// factorisation is ≈ 4× slower. Install libopenblas0-pthread.)
 ///
+/// Determinism: the same system gives the same bits for any OMP_NUM_THREADS /
+/// OPENBLAS_NUM_THREADS — our OpenMP loops sum in a fixed order, and the factorisation always
+/// runs OpenBLAS with 2 threads (its threaded dpotrf rounds differently per thread count).
+///
 /// Errors (InputError, with the reason): the system is not SPD or is singular — κ ≤ 0, no
 /// Dirichlet boundary (pure Neumann), a mesh piece without Dirichlet vertex (from assemble()),
 /// or CHOLMOD reporting a non-positive pivot.

@@ -8,6 +8,7 @@
 #include "fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 using namespace ablmg;
 using namespace ablmg::fem;
@@ -145,4 +146,16 @@ TEST(PoissonProblem, LambdasConvertToScalarData) {
   EXPECT_TRUE(p.dirichlet[2].isFunction());
   EXPECT_TRUE(p.kappa.isConstant());
   EXPECT_EQ(p.kappa.constant, 2.0);
+}
+
+TEST(Solve, BitwiseSameForAnyThreadCount) {
+  const Mesh2 m = unitSquareMesh(220, 0.2, 21);  // large enough for threaded BLAS and OpenMP paths
+  const PoissonProblem p = makeProblem("wavefront").poisson();
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Eigen::VectorXd one = solvePoisson(m, p).u;
+  omp_set_num_threads(2);
+  const Eigen::VectorXd two = solvePoisson(m, p).u;
+  omp_set_num_threads(saved);
+  EXPECT_TRUE(one == two);
 }
