@@ -64,7 +64,7 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
   p.domain = Domain::rectangle(0, 0, 1, 1);
 
   if (name == "wavefront") {
-    // Mitchell §2.5: u = atan(α(r − r0)); u_r = α/(1+s²), u_rr = −2α² s/(1+s²)², s = α(r − r0).
+    // Mitchell (2013): u = atan(α(r − r0)); u_r = α/(1+s²), u_rr = −2α² s/(1+s²)², s = α(r − r0).
     const double a = p.params["alpha"], xc = p.params["xc"], yc = p.params["yc"], r0 = p.params["r0"];
     ABLMG_REQUIRE(a > 0, "problem 'wavefront': alpha = " << a << " must be positive");
     p.formula = "atan(alpha*(sqrt((x-xc)^2+(y-yc)^2)-r0))";
@@ -79,7 +79,7 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
       return -(urr + ur / r);
     };
   } else if (name == "peak") {
-    // Mitchell §2.6: u = exp(−α ρ²), ρ² = |x − xc|²; Δu = u (4α²ρ² − 4α).
+    // Mitchell (2013): u = exp(−α ρ²), ρ² = |x − xc|²; Δu = u (4α²ρ² − 4α).
     const double a = p.params["alpha"], xc = p.params["xc"], yc = p.params["yc"];
     ABLMG_REQUIRE(a > 0, "problem 'peak': alpha = " << a << " must be positive");
     p.formula = "exp(-alpha*((x-xc)^2+(y-yc)^2))";
@@ -93,7 +93,7 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
       return std::exp(-a * r2) * (4 * a - 4 * a * a * r2);
     };
   } else if (name == "lshape") {
-    // Mitchell §2.1 (reentrant corner, ω = 3π/2): u = r^(2/3) sin(2θ/3), harmonic, so f = 0;
+    // Mitchell (2013) (reentrant corner, ω = 3π/2): u = r^(2/3) sin(2θ/3), harmonic, so f = 0;
     // ∇u = (2/3) r^(−1/3) (−sin(θ/3), cos(θ/3)).
     p.domain = lshapeDomain();
     p.formula = "r^(2/3)*sin(2*theta/3)";

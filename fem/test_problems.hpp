@@ -6,10 +6,10 @@
 /// refinement algorithms", Appl. Math. Comput. 220 (2013) 350–364.
 ///
 ///  name        u                                   domain                    params (defaults)
-///  wavefront   atan(α (r − r0)), r = |x − (xc,yc)|  (0,1)²   Mitchell §2.5    alpha 20, xc −0.05, yc −0.05, r0 0.7
-///  peak        exp(−α |x − (xc,yc)|²)               (0,1)²   Mitchell §2.6    alpha 1000, xc 0.5, yc 0.5
-///  lshape      r^(2/3) sin(2θ/3), θ ∈ [0, 3π/2]     (−1,1)² \ [0,1)×(−1,0]    (none); Mitchell §2.1, f = 0
-///  tanhlayer   tanh((y − 0.5)/ε)                    (0,1)²   interior layer   epsilon 0.01
+///  wavefront   atan(α (r − r0)), r = |x − (xc,yc)|  (0,1)²   Mitchell: wave front      alpha 20, xc −0.05, yc −0.05, r0 0.7
+///  peak        exp(−α |x − (xc,yc)|²)               (0,1)²   Mitchell: peak            alpha 1000, xc 0.5, yc 0.5
+///  lshape      r^(2/3) sin(2θ/3), θ ∈ [0, 3π/2]     (−1,1)² \ [0,1)×(−1,0]    Mitchell: reentrant corner (f = 0)
+///  tanhlayer   tanh((y − 0.5)/ε)                    (0,1)²   anisotropic interior layer   epsilon 0.01
 ///  smooth      eˣ sin(πy) + x y                      (0,1)²   verification     (none)
 ///  sine        sin(πx) sin(πy)                      (0,1)²   verification     (none)
 ///  linear      1 + 2x − 3y  (f = 0, patch test)     (0,1)²   verification     (none)
