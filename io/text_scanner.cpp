@@ -54,8 +54,7 @@ std::string_view TextScanner::peek() {
 std::string_view TextScanner::next(const char* what) {
   skipSpace();
   if (pos_ >= text_.size()) {
-    lastLine_ = curLine_;
-    ABLMG_REQUIRE(false, name_ << ":" << curLine_ << ": unexpected end of file (truncated?), expected " << what);
+    ABLMG_REQUIRE(false, name_ << ":" << lastLine_ << ": unexpected end of file (truncated?), expected " << what);
   }
   std::size_t end = pos_;
   while (end < text_.size() && !isDelimiter(text_[end])) ++end;
