@@ -1,0 +1,318 @@
+#include "cli/config.hpp"
+
+#include "core/error.hpp"
+#include "io/medit.hpp"
+#include "io/poly.hpp"
+
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <variant>
+
+namespace ablmg::cli {
+namespace {
+
+using json = nlohmann::json;
+using mesher::ConnectOptions;
+using mesher::PlacementOptions;
+
+std::string typeName(const json& j) {
+  if (j.is_number_integer() || j.is_number_unsigned() || j.is_number_float()) return "number";
+  return j.type_name();
+}
+
+/// A key path inside the config file, for messages: "config.json: metric.h1".
+struct Where {
+  std::string file, path;
+  Where operator/(const std::string& key) const { return {file, path.empty() ? key : path + "." + key}; }
+  Where operator[](std::size_t i) const { return {file, path + "[" + std::to_string(i) + "]"}; }
+  std::string str() const { return file + ": " + (path.empty() ? "(top level)" : path); }
+};
+
+void requireType(const json& j, bool ok, const char* expected, const Where& w) {
+  ABLMG_REQUIRE(ok, w.str() << ": expected " << expected << ", got " << typeName(j));
+}
+const json& requireObject(const json& j, const Where& w) {
+  requireType(j, j.is_object(), "object", w);
+  return j;
+}
+double getNumber(const json& j, const Where& w) {
+  requireType(j, j.is_number(), "number", w);
+  const double v = j.get<double>();
+  ABLMG_REQUIRE(std::isfinite(v), w.str() << ": value is not finite");
+  return v;
+}
+std::string getString(const json& j, const Where& w) {
+  requireType(j, j.is_string(), "string", w);
+  return j.get<std::string>();
+}
+Vec2 getPoint(const json& j, const Where& w) {
+  requireType(j, j.is_array() && j.size() == 2, "[x, y]", w);
+  return {getNumber(j[0], w[0]), getNumber(j[1], w[1])};
+}
+/// Rejects keys not in `allowed`, naming the first unknown one and the allowed set.
+void checkKeys(const json& j, std::initializer_list<const char*> allowed, const Where& w) {
+  for (const auto& [k, v] : j.items()) {
+    bool ok = false;
+    for (const char* a : allowed) ok = ok || k == a;
+    if (!ok) {
+      std::ostringstream os;
+      for (const char* a : allowed) os << (os.tellp() > 0 ? ", " : "") << a;
+      ABLMG_REQUIRE(false, (w / k).str() << ": unknown key (allowed: " << os.str() << ")");
+    }
+  }
+}
+std::string resolve(const std::string& p, const std::string& baseDir) {
+  const std::filesystem::path path(p);
+  if (path.is_absolute() || baseDir.empty()) return p;
+  return (std::filesystem::path(baseDir) / path).string();
+}
+
+// ---- options: one binding per field, used both to read and to print ----
+template <class S>
+using Member = std::variant<double S::*, int S::*, long S::*, std::uint64_t S::*, bool S::*>;
+template <class S>
+struct Binding {
+  const char* name;
+  Member<S> member;
+};
+const std::vector<Binding<PlacementOptions>>& placementBindings() {
+  static const std::vector<Binding<PlacementOptions>> b = {
+      {"k0", &PlacementOptions::k0},
+      {"mass", &PlacementOptions::mass},
+      {"damping", &PlacementOptions::damping},
+      {"timeStep", &PlacementOptions::timeStep},
+      {"adjacencyRadius", &PlacementOptions::adjacencyRadius},
+      {"adjacencyRefresh", &PlacementOptions::adjacencyRefresh},
+      {"maxSteps", &PlacementOptions::maxSteps},
+      {"tolerance", &PlacementOptions::tolerance},
+      {"maxNodes", &PlacementOptions::maxNodes},
+      {"seed", &PlacementOptions::seed},
+      {"threads", &PlacementOptions::threads},
+      {"bubblesOnly", &PlacementOptions::bubblesOnly},
+  };
+  return b;
+}
+const std::vector<Binding<ConnectOptions>>& connectBindings() {
+  static const std::vector<Binding<ConnectOptions>> b = {{"threads", &ConnectOptions::threads}};
+  return b;
+}
+
+template <class S>
+void applyBindings(const json& j, S& s, const std::vector<Binding<S>>& bindings, const Where& w) {
+  requireObject(j, w);
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string k = it.key();
+    const json& v = it.value();
+    const Binding<S>* found = nullptr;
+    for (const auto& b : bindings)
+      if (k == b.name) found = &b;
+    if (!found) {
+      std::ostringstream os;
+      for (const auto& b : bindings) os << (os.tellp() > 0 ? ", " : "") << b.name;
+      ABLMG_REQUIRE(false, (w / k).str() << ": unknown key (allowed: " << os.str() << ")");
+    }
+    const Where wk = w / k;
+    std::visit(
+        [&](auto member) {
+          using T = std::remove_reference_t<decltype(s.*member)>;
+          if constexpr (std::is_same_v<T, bool>) {
+            requireType(v, v.is_boolean(), "boolean", wk);
+            s.*member = v.get<bool>();
+          } else if constexpr (std::is_same_v<T, double>) {
+            s.*member = getNumber(v, wk);
+          } else {
+            requireType(v, v.is_number_integer() || v.is_number_unsigned(), "integer", wk);
+            if constexpr (std::is_unsigned_v<T>) {
+              ABLMG_REQUIRE(v.is_number_unsigned() || v.get<long long>() >= 0, wk.str() << ": must be ≥ 0, got " << v.dump());
+              s.*member = v.get<T>();
+            } else {
+              const long long x = v.is_number_unsigned() && v.get<unsigned long long>() > (unsigned long long)LLONG_MAX ? LLONG_MAX : v.get<long long>();
+              ABLMG_REQUIRE(x >= (long long)std::numeric_limits<T>::min() && x <= (long long)std::numeric_limits<T>::max(),
+                            wk.str() << ": " << v.dump() << " is out of range");
+              s.*member = T(x);
+            }
+          }
+        },
+        found->member);
+  }
+}
+template <class S>
+json bindingsToJson(const S& s, const std::vector<Binding<S>>& bindings) {
+  json j = json::object();
+  for (const auto& b : bindings) std::visit([&](auto member) { j[b.name] = s.*member; }, b.member);
+  return j;
+}
+
+Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
+  requireObject(j, w);
+  ABLMG_REQUIRE(!j.empty(), w.str() << ": empty; expected one of rectangle, disk, poly, loops");
+  if (j.contains("rectangle")) {
+    checkKeys(j, {"rectangle"}, w);
+    const Where wr = w / "rectangle";
+    const json& r = j["rectangle"];
+    requireType(r, r.is_array() && r.size() == 4, "[x0, y0, x1, y1]", wr);
+    double c[4];
+    for (int k = 0; k < 4; ++k) c[k] = getNumber(r[k], wr[k]);
+    ABLMG_REQUIRE(c[0] < c[2] && c[1] < c[3], wr.str() << ": need x0 < x1 and y0 < y1, got " << r.dump());
+    return Domain::rectangle(c[0], c[1], c[2], c[3]);
+  }
+  if (j.contains("disk")) {
+    checkKeys(j, {"disk"}, w);
+    const Where wd = w / "disk";
+    const json& d = requireObject(j["disk"], wd);
+    checkKeys(d, {"center", "radius", "samples"}, wd);
+    ABLMG_REQUIRE(d.contains("center") && d.contains("radius"), wd.str() << ": needs center and radius");
+    const Vec2 c = getPoint(d["center"], wd / "center");
+    const double r = getNumber(d["radius"], wd / "radius");
+    ABLMG_REQUIRE(r > 0, (wd / "radius").str() << ": must be > 0, got " << r);
+    int samples = 2048;
+    if (d.contains("samples")) {
+      const Where ws = wd / "samples";
+      requireType(d["samples"], d["samples"].is_number_integer(), "integer", ws);
+      const long long n = d["samples"].get<long long>();
+      ABLMG_REQUIRE(n >= 8 && n <= 10'000'000, ws.str() << ": must be in [8, 1e7], got " << n);
+      samples = int(n);
+    }
+    return Domain::disk(c, r, samples);
+  }
+  if (j.contains("poly")) {
+    checkKeys(j, {"poly"}, w);
+    return io::readPoly(resolve(getString(j["poly"], w / "poly"), baseDir));
+  }
+  if (j.contains("loops")) {
+    checkKeys(j, {"loops", "tags"}, w);
+    const Where wl = w / "loops";
+    const json& L = j["loops"];
+    requireType(L, L.is_array() && !L.empty(), "non-empty array of loops", wl);
+    std::vector<BoundaryLoop> loops;
+    for (std::size_t l = 0; l < L.size(); ++l) {
+      requireType(L[l], L[l].is_array() && L[l].size() >= 3, "array of ≥ 3 points [x, y]", wl[l]);
+      BoundaryLoop loop;
+      for (std::size_t k = 0; k < L[l].size(); ++k) loop.points.push_back(getPoint(L[l][k], wl[l][k]));
+      loops.push_back(std::move(loop));
+    }
+    if (j.contains("tags")) {
+      const Where wt = w / "tags";
+      const json& T = j["tags"];
+      requireType(T, T.is_array() && T.size() == L.size(), "array with one entry per loop", wt);
+      for (std::size_t l = 0; l < T.size(); ++l) {
+        if (T[l].is_number_integer()) {
+          loops[l].tags.assign(loops[l].points.size(), T[l].get<int>());
+        } else {
+          requireType(T[l], T[l].is_array() && T[l].size() == loops[l].points.size(), "integer or one integer per segment", wt[l]);
+          for (std::size_t k = 0; k < T[l].size(); ++k) {
+            requireType(T[l][k], T[l][k].is_number_integer(), "integer", wt[l][k]);
+            loops[l].tags.push_back(T[l][k].get<int>());
+          }
+        }
+      }
+    }
+    BoundaryLoop outer = std::move(loops.front());
+    loops.erase(loops.begin());
+    try {
+      return Domain(std::move(outer), std::move(loops));
+    } catch (const InputError& e) {
+      throw InputError(wl.str() + ": " + e.what());
+    }
+  }
+  ABLMG_REQUIRE(false, (w / j.begin().key()).str() << ": unknown key (expected one of rectangle, disk, poly, loops)");
+  return {};
+}
+
+std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const std::string& baseDir, std::string& description) {
+  requireObject(j, w);
+  const auto expr = [&](const char* key, const char* fallback) {
+    return j.contains(key) ? getString(j[key], w / key) : std::string(fallback);
+  };
+  if (j.contains("mesh") || j.contains("sol")) {
+    checkKeys(j, {"mesh", "sol"}, w);
+    ABLMG_REQUIRE(j.contains("mesh") && j.contains("sol"), w.str() << ": a background metric needs both mesh and sol");
+    const std::string meshPath = resolve(getString(j["mesh"], w / "mesh"), baseDir);
+    const std::string solPath = resolve(getString(j["sol"], w / "sol"), baseDir);
+    Mesh2 mesh = io::readMesh(meshPath);
+    auto metrics = io::readSol(solPath, mesh.numVertices());
+    mesh.requireValid(meshPath);
+    description = "background mesh " + meshPath + " (" + std::to_string(mesh.numVertices()) + " vertices) + " + solPath;
+    return std::make_unique<BackgroundMetricField>(std::move(mesh), std::move(metrics));
+  }
+  const std::string source = w.str();
+  if (j.contains("m11") || j.contains("m12") || j.contains("m22")) {
+    checkKeys(j, {"m11", "m12", "m22"}, w);
+    ABLMG_REQUIRE(j.contains("m11") && j.contains("m22"), w.str() << ": a tensor metric needs m11 and m22 (m12 defaults to 0)");
+    const auto a = expr("m11", ""), b = expr("m12", "0"), c = expr("m22", "");
+    description = "analytic tensor m11=" + a + " m12=" + b + " m22=" + c;
+    return std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Tensor, a, b, c, source);
+  }
+  if (j.contains("h")) {
+    checkKeys(j, {"h"}, w);
+    const auto h = expr("h", "");
+    description = "analytic isotropic h=" + h;
+    return std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Sizes, h, h, "0", source);
+  }
+  checkKeys(j, {"h1", "h2", "theta"}, w);
+  ABLMG_REQUIRE(j.contains("h1"), w.str() << ": expected h1/h2/theta, h, m11/m12/m22 or mesh/sol");
+  const auto h1 = expr("h1", ""), h2 = j.contains("h2") ? expr("h2", "") : h1, th = expr("theta", "0");
+  description = "analytic sizes h1=" + h1 + " h2=" + h2 + " theta=" + th;
+  return std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Sizes, h1, h2, th, source);
+}
+
+} // namespace
+
+void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where) {
+  const std::size_t colon = where.find(": ");
+  const Where w = colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
+  requireObject(j, w);
+  checkKeys(j, {"placement", "connect"}, w);
+  if (j.contains("placement")) applyBindings(j["placement"], options.placement, placementBindings(), w / "placement");
+  if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
+}
+
+nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
+  return {{"placement", bindingsToJson(options.placement, placementBindings())},
+          {"connect", bindingsToJson(options.connect, connectBindings())}};
+}
+
+Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    std::string msg = e.what();
+    const auto p = msg.find("] ");
+    if (p != std::string::npos) msg = msg.substr(p + 2);
+    ABLMG_REQUIRE(false, name << ": invalid JSON: " << msg);
+  }
+  const Where top{name, ""};
+  requireObject(j, top);
+  checkKeys(j, {"domain", "metric", "options", "outputs"}, top);
+  ABLMG_REQUIRE(j.contains("domain"), name << ": domain: missing (required)");
+  ABLMG_REQUIRE(j.contains("metric"), name << ": metric: missing (required)");
+  Config c;
+  // Cheap checks first: options and outputs before reading any file.
+  if (j.contains("options")) applyMeshOptions(j["options"], c.options, name + ": options");
+  if (j.contains("outputs")) {
+    const Where wo = top / "outputs";
+    const json& o = requireObject(j["outputs"], wo);
+    checkKeys(o, {"mesh", "vtu", "png", "report"}, wo);
+    const auto get = [&](const char* k) { return o.contains(k) ? resolve(getString(o[k], wo / k), baseDir) : std::string(); };
+    c.outputs = {get("mesh"), get("vtu"), get("png"), get("report")};
+  }
+  c.domain = parseDomain(j["domain"], top / "domain", baseDir);
+  c.metric = parseMetric(j["metric"], top / "metric", baseDir, c.metricDescription);
+  return c;
+}
+
+Config loadConfig(const std::string& path) {
+  std::ifstream is(path, std::ios::binary);
+  ABLMG_REQUIRE(is, path << ": cannot open for reading");
+  std::ostringstream ss;
+  ss << is.rdbuf();
+  return parseConfig(ss.str(), path, std::filesystem::path(path).parent_path().string());
+}
+
+} // namespace ablmg::cli

@@ -1,0 +1,58 @@
+#pragma once
+/// JSON configuration of `ablmg mesh` → Domain, MetricField, mesher::MeshOptions, outputs.
+/// Schema (full text with examples: docs/config.md):
+///
+///   {
+///     "domain":  {"rectangle": [x0, y0, x1, y1]}
+///              | {"disk": {"center": [x, y], "radius": r, "samples": 2048}}
+///              | {"poly": "file.poly"}
+///              | {"loops": [[[x, y], ...], ...], "tags": [[t, ...], ...] or [t, ...]}
+///                (first loop outer, the others holes; tags per segment, or one per loop),
+///     "metric":  {"h1": "expr", "h2": "expr", "theta": "expr"}    (h2 default = h1, theta "0")
+///              | {"h": "expr"}                                   (isotropic)
+///              | {"m11": "expr", "m12": "expr", "m22": "expr"}   (muparser, variables x, y)
+///              | {"mesh": "bg.mesh", "sol": "bg.sol"}            (BackgroundMetricField),
+///     "options": {"placement": {<PlacementOptions field>: value, ...},
+///                 "connect":   {<ConnectOptions field>: value, ...}},
+///     "outputs": {"mesh": "out.mesh", "vtu": "out.vtu", "png": "out.png", "report": "r.json"}
+///   }
+///
+/// Only "domain" and "metric" are required. Option names are the C++ field names; omitted
+/// fields keep their defaults. Relative paths (poly, mesh, sol, outputs) are relative to the
+/// config file's directory. Unknown keys, wrong types and bad values are ablmg::InputError
+/// naming the file and key path: "config.json: metric.h1: expected string, got number".
+#include "core/domain.hpp"
+#include "core/metric_field.hpp"
+#include "mesher/mesher.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+
+namespace ablmg::cli {
+
+struct ConfigOutputs {
+  std::string mesh, vtu, png, report;  ///< empty = not requested; resolved paths
+};
+
+struct Config {
+  Domain domain;
+  std::unique_ptr<MetricField> metric;
+  std::string metricDescription;  ///< one line, e.g. "analytic sizes h1=0.1 h2=0.1 theta=0"
+  mesher::MeshOptions options;
+  ConfigOutputs outputs;
+};
+
+/// Reads and checks `path` (file name used in messages).
+Config loadConfig(const std::string& path);
+/// From text; `name` is used in messages, `baseDir` resolves relative paths.
+Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir);
+
+/// Fills `options` from a JSON object {"placement": {...}, "connect": {...}}; `where` prefixes
+/// messages (e.g. "config.json: options").
+void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where);
+/// Every option with its value (defaults included), same layout as applyMeshOptions reads.
+nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options);
+
+} // namespace ablmg::cli
