@@ -1,0 +1,30 @@
+#include "adapt/convergence.hpp"
+
+#include "core/error.hpp"
+
+#include <cmath>
+
+namespace ablmg::adapt {
+
+double logLogSlope(std::span<const double> n, std::span<const double> e, int lastK) {
+  ABLMG_REQUIRE(n.size() == e.size(), "logLogSlope: " << n.size() << " abscissae for " << e.size() << " errors");
+  const std::size_t size = n.size();
+  const std::size_t k = (lastK <= 0 || std::size_t(lastK) > size) ? size : std::size_t(lastK);
+  ABLMG_REQUIRE(k >= 2, "logLogSlope: needs at least 2 points (got " << k << ")");
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = size - k; i < size; ++i) {
+    ABLMG_REQUIRE(n[i] > 0 && e[i] > 0 && std::isfinite(n[i]) && std::isfinite(e[i]),
+                  "logLogSlope: point " << i << " is not positive (n " << n[i] << ", error " << e[i] << ")");
+    const double x = std::log(n[i]), y = std::log(e[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  const double kk = double(k);
+  const double den = kk * sxx - sx * sx;
+  ABLMG_REQUIRE(den > 1e-12 * kk * sxx, "logLogSlope: all N are equal");
+  return (kk * sxy - sx * sy) / den;
+}
+
+} // namespace ablmg::adapt

@@ -1,0 +1,121 @@
+#include "adapt/metric_from_hessian.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace ablmg::adapt {
+
+void validate(const MetricOptions& o) {
+  ABLMG_REQUIRE(std::isfinite(o.targetVertices) && o.targetVertices > 0,
+                "metric options: targetVertices must be > 0 (got " << o.targetVertices << ")");
+  ABLMG_REQUIRE(o.p >= 1, "metric options: p must be >= 1 or inf (got " << o.p << ")");
+  ABLMG_REQUIRE(o.hmin >= 0 && std::isfinite(o.hmin), "metric options: hmin must be >= 0 (got " << o.hmin << ")");
+  ABLMG_REQUIRE(o.hmax > o.hmin, "metric options: hmax must be > hmin (got hmax " << o.hmax << ", hmin " << o.hmin << ")");
+  ABLMG_REQUIRE(o.maxAnisotropy >= 1, "metric options: maxAnisotropy must be >= 1 (got " << o.maxAnisotropy << ")");
+  ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1, "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
+}
+
+Hessian2 absoluteHessian(const Hessian2& h, double floor) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+  es.computeDirect(h);
+  Eigen::Vector2d l = es.eigenvalues().cwiseAbs();
+  l = l.cwiseMax(floor);
+  return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+}
+
+double complexityForVertices(double vertices) { return 0.5 * std::sqrt(3.0) * vertices; }
+
+Metric2 boundMetric(const Metric2& m, double hmin, double hmax, double maxAnisotropy) {
+  Eigen::Matrix2d a;
+  a << m.m11(), m.m12(), m.m12(), m.m22();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+  es.computeDirect(a);
+  Eigen::Vector2d l = es.eigenvalues();  // ascending: l[0] ↔ largest size
+  const double lmax = hmin > 0 ? 1.0 / (hmin * hmin) : std::numeric_limits<double>::infinity();
+  const double lmin = std::isfinite(hmax) ? 1.0 / (hmax * hmax) : 0.0;
+  for (int k = 0; k < 2; ++k) l[k] = std::clamp(l[k], lmin, lmax);
+  // h1/h2 = sqrt(l1/l0) ≤ r  ⇔  l0 ≥ l1 / r²: raise the smaller eigenvalue (coarser size shrinks).
+  l[0] = std::max(l[0], l[1] / (maxAnisotropy * maxAnisotropy));
+  const Eigen::Matrix2d r = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+  return Metric2::fromTensor(r(0, 0), 0.5 * (r(0, 1) + r(1, 0)), r(1, 1), "boundMetric");
+}
+
+double metricComplexity(const Mesh2& mesh, std::span<const Metric2> metrics) {
+  ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
+                "metricComplexity: " << metrics.size() << " metrics for " << mesh.numVertices() << " vertices");
+  std::vector<double> s(metrics.size());
+  for (std::size_t v = 0; v < metrics.size(); ++v) s[v] = std::sqrt(std::max(metrics[v].det(), 0.0));
+  double c = 0;
+  for (int t = 0; t < mesh.numTriangles(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    c += mesh.triangleArea(t) * (s[tri[0]] + s[tri[1]] + s[tri[2]]) / 3.0;
+  }
+  return c;
+}
+
+namespace {
+double integrate(const Mesh2& mesh, const std::vector<double>& s) {
+  double c = 0;
+  for (int t = 0; t < mesh.numTriangles(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    c += mesh.triangleArea(t) * (s[tri[0]] + s[tri[1]] + s[tri[2]]) / 3.0;
+  }
+  return c;
+}
+} // namespace
+
+std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessian2> hessians, const MetricOptions& o) {
+  validate(o);
+  const int n = mesh.numVertices();
+  ABLMG_REQUIRE(long(hessians.size()) == long(n),
+                "metricFromHessians: " << hessians.size() << " Hessians for " << n << " vertices");
+  double hmaxAbs = 0;
+  for (int v = 0; v < n; ++v) {
+    ABLMG_REQUIRE(hessians[v].allFinite(), "metricFromHessians: Hessian at vertex " << v << " is not finite");
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+    es.computeDirect(hessians[v]);
+    hmaxAbs = std::max(hmaxAbs, es.eigenvalues().cwiseAbs().maxCoeff());
+  }
+  // A field with H ≡ 0 (u linear): any isotropic metric is optimal; use the identity shape.
+  const double floor = hmaxAbs > 0 ? o.eigenFloor * hmaxAbs : 1.0;
+  const bool pInf = std::isinf(o.p);
+  // Unscaled shape S(x) = det|H|^(−1/(2p+2)) |H|, so that M = D S.
+  std::vector<Hessian2> shape(n);
+  std::vector<double> sqrtDet(n);
+  for (int v = 0; v < n; ++v) {
+    const Hessian2 a = absoluteHessian(hessians[v], floor);
+    const double det = a.determinant();
+    const double factor = pInf ? 1.0 : std::pow(det, -1.0 / (2 * o.p + 2));
+    shape[v] = factor * a;
+    sqrtDet[v] = std::sqrt(shape[v].determinant());
+  }
+  const double target = complexityForVertices(o.targetVertices);
+  double d = target / integrate(mesh, sqrtDet);
+  std::vector<Metric2> out(n);
+  for (int it = 0; it < 60; ++it) {
+    for (int v = 0; v < n; ++v) {
+      const Hessian2 m = d * shape[v];
+      out[v] = boundMetric(Metric2::raw(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)), o.hmin, o.hmax, o.maxAnisotropy);
+    }
+    const double c = metricComplexity(mesh, out);
+    if (std::abs(c / target - 1) < 1e-4) break;
+    // √det M scales like D where unbounded: a Newton-like fixed point on D.
+    const double nd = d * target / c;
+    if (!(nd > 0) || std::abs(nd / d - 1) < 1e-12) break;  // bounds saturate: closest value reached
+    d = nd;
+  }
+  return out;
+}
+
+std::vector<Metric2> intersectFields(std::span<const Metric2> a, std::span<const Metric2> b) {
+  ABLMG_REQUIRE(a.size() == b.size(), "intersectFields: sizes differ (" << a.size() << " vs " << b.size() << ")");
+  std::vector<Metric2> out(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) out[i] = intersect(a[i], b[i]);
+  return out;
+}
+
+} // namespace ablmg::adapt
