@@ -147,6 +147,12 @@ void drawBubbles(const std::string& path, const Domain& domain, std::span<const 
                  const Mesh2* mesh, const PictureOptions& o) {
   ABLMG_REQUIRE(centres.size() == metrics.size(), path << ": " << centres.size() << " centres but " << metrics.size() << " metrics");
   auto [lo, hi] = domain.boundingBox();
+  for (std::size_t i = 0; i < centres.size(); ++i) {  // bubbles crossing the boundary stay in the picture
+    const double r = 0.5 * metrics[i].eigen().h1;
+    if (!std::isfinite(r) || !centres[i].allFinite()) continue;
+    lo = lo.cwiseMin(centres[i] - Vec2(r, r));
+    hi = hi.cwiseMax(centres[i] + Vec2(r, r));
+  }
   int w, h;
   const View v = makeView(lo.x(), lo.y(), hi.x(), hi.y(), o, 0, w, h);
   Canvas c(w, h);
