@@ -44,11 +44,22 @@ void BubbleSystem::setBounds() {
     double su = s;
     if (su < lo) su += L;
     if (su > hi) su -= L;
+    sLo_[i] = lo;
+    sHi_[i] = hi;
     const double margin = 1e-4 * (hi - lo);
-    sLo_[i] = lo + margin;
-    sHi_[i] = hi - margin;
-    s_[i] = std::clamp(su, sLo_[i], sHi_[i]);
+    s_[i] = std::clamp(su, lo + margin, hi - margin);
   }
+}
+
+bool BubbleSystem::sameChain(int i, int j) const {
+  const int l = nodes_.loops[i];
+  if (nodes_.loops[j] != l) return false;
+  if (!std::isfinite(sLo_[i])) return true;  // corner-less loop: one closed chain
+  if (nodes_.kinds[j] == NodeKind::Segment) return sLo_[j] == sLo_[i];
+  if (nodes_.kinds[j] != NodeKind::Vertex) return false;
+  const double sj = geo_->wrap(l, s_[j]);
+  const double tol = 1e-9 * geo_->loops()[l].length;
+  return std::abs(sj - geo_->wrap(l, sLo_[i])) < tol || std::abs(sj - geo_->wrap(l, sHi_[i])) < tol;
 }
 
 double BubbleSystem::arcLength(int i) const { return nodes_.loops[i] < 0 ? -1.0 : geo_->wrap(nodes_.loops[i], s_[i]); }
@@ -98,7 +109,7 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
       const Metric2& mi = metrics_[i];
       const bool segment = nodes_.kinds[i] == NodeKind::Segment;
       for (int j : adj.neighbours(i)) {
-        if (segment && nodes_.loops[j] != nodes_.loops[i]) continue;  // 1D packing along the loop
+        if (segment && !sameChain(i, j)) continue;  // 1D packing along the loop piece
         const Vec2 d = x[j] - x[i];
         const double l2 = d.squaredNorm();
         if (!(l2 > 0)) continue;
@@ -134,8 +145,9 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         const Vec2 t = geo_->tangentAt(l, s_[i]);
         const double vt = vel_[i].dot(t) + dtm * (force_[i].dot(t) - p.damping * vel_[i].dot(t));
         double s = s_[i] + p.dt * vt;
-        if (s <= sLo_[i] || s >= sHi_[i]) {
-          s = std::clamp(s, sLo_[i], sHi_[i]);
+        const double margin = std::isfinite(sLo_[i]) ? 1e-4 * (sHi_[i] - sLo_[i]) : 0.0;
+        if (s <= sLo_[i] + margin || s >= sHi_[i] - margin) {
+          s = std::clamp(s, sLo_[i] + margin, sHi_[i] - margin);
           vel_[i] = Vec2::Zero();
         } else {
           vel_[i] = vt * t;

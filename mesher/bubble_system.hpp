@@ -8,7 +8,7 @@
 /// coordinates, so Δt, m, c, k0 are dimensionless and the §6 defaults work for any size h.
 /// In metric terms w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}), no trigonometry.
 ///
-/// Constraints: Vertex nodes never move; Segment nodes feel only the bubbles of their own loop
+/// Constraints: Vertex nodes never move; Segment nodes feel only the bubbles of their own loop piece
 /// (the boundary is packed as a 1D chain first, so boundary edges keep unit metric length
 /// instead of being dragged by the interior: sliding under interior forces left boundary
 /// edges in [0.79, 1.28] on the disk), keep only the tangential part of their
@@ -63,9 +63,12 @@ public:
 
 private:
   void setBounds();
+  /// Segment node i and node j on the same piece of loop between two corners (j a Segment
+  /// node of that piece or one of its two corners).
+  bool sameChain(int i, int j) const;
   const DomainGeometry* geo_;
   NodeSet nodes_;
-  std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length and its clamp interval (Segment nodes)
+  std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
   std::vector<Vec2> vel_, force_;
   std::vector<Metric2> metrics_;
   std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated

@@ -22,12 +22,12 @@ struct PlacementOptions {
   /// units (bubble_system.hpp), where one pair has stiffness |f'(1)| = k0 and forward Euler is
   /// stable up to Δt ≈ 0.5; with the paper's values the disk cases of §4.3 reduced the largest
   /// force only ×3–5 in 400 steps (over-damped soft modes, tiny steps), with c = 1, Δt = 0.3
-  /// ×250–850 in ≤ 1000 steps. Set damping = 3.8429, timeStep = 0.02 for the paper's run.
+  /// ×600–850 in ≤ 1400 steps. Set damping = 3.8429, timeStep = 0.02 for the paper's run.
   double damping = 1.0;       ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.3;      ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 10;  ///< refresh the lists every k steps (§3.3)
-  int maxSteps = 1000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
+  int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
   double tolerance = 1e-3;    ///< stop when the residual (largest net force |f_i|_{M_i}, metric units; see
                               ///< bubble_system.hpp) falls below this, once the population has settled
   long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this

@@ -1,5 +1,7 @@
 #include "mesher/population.hpp"
 
+#include "core/bucket_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -58,7 +60,17 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   for (int i = 0; i < n; ++i)
     if (nodes.kinds[i] == NodeKind::Interior && (alpha[i] > delAbove || (alpha[i] > o.squeezeAlpha && nearest[i] < o.squeezeBelow)))
       del.push_back(i);
-  std::stable_sort(del.begin(), del.end(), [&](int a, int b) { return alpha[a] > alpha[b]; });
+  // Order: overlap ratio plus the number of neighbours closer than squeezeBelow, so that an
+  // interstitial (three close neighbours) goes before the lattice nodes it squeezes (one).
+  std::vector<double> score(n, 0.0);
+  for (int i : del) {
+    score[i] = alpha[i];
+    for (int j : adj.neighbours(i)) {
+      const Vec2 d = nodes.positions[j] - nodes.positions[i];
+      score[i] += std::sqrt(0.5 * (ms[i].squaredLength(d) + ms[j].squaredLength(d))) < o.squeezeBelow;
+    }
+  }
+  std::stable_sort(del.begin(), del.end(), [&](int a, int b) { return score[a] > score[b]; });
   long delBudget = steerDown ? -deficit : std::numeric_limits<long>::max();
   if (steerUp) delBudget = 0;  // never delete while short, except real overlaps below
   for (int i : del) {
@@ -79,6 +91,9 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   long insBudget = steerUp ? deficit : std::numeric_limits<long>::max();
   if (steerDown) insBudget = 0;
   std::vector<std::pair<Vec2, Metric2>> added;
+  const auto [blo, bhi] = geo.boundingBox();
+  BucketGrid addedGrid(blo, bhi, std::sqrt((bhi - blo).prod() / std::max(n, 1)), 4L * n + 16);
+  addedGrid.clearIncremental();
   for (int i : ins) {
     if (locked[i]) continue;
     if (insBudget <= 0 && alpha[i] >= o.insertBelow) continue;
@@ -94,12 +109,14 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       const Vec2 cand = xi + Vec2(c * u.x() - s * u.y(), s * u.x() + c * u.y());
       double dmin = std::numeric_limits<double>::infinity();
       for (int j : adj.neighbours(i)) dmin = std::min(dmin, mi.length(nodes.positions[j] - cand));
+      addedGrid.forEachIncremental(cand, o.minGap * e.h1, [&](int k) { dmin = std::min(dmin, mi.length(added[k].first - cand)); });
       if (dmin > bestD && geo.inside(cand) && geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) >= 0.5) {
         bestD = dmin;
         best = cand;
       }
     }
     if (bestD < o.minGap) continue;
+    addedGrid.insert(int(added.size()), best);
     added.push_back({best, mi});
     locked[i] = 1;
     for (int j : adj.neighbours(i)) locked[j] = 1;

@@ -1,0 +1,87 @@
+#include "mesher/adjacency.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace ablmg;
+using namespace ablmg::mesher;
+
+namespace {
+
+struct Cloud {
+  std::vector<Vec2> x;
+  std::vector<Metric2> m;
+};
+
+Cloud randomCloud(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  Cloud c;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 p(4 * u(rng), 2 * u(rng));
+    const double h = 0.03 + 0.1 * p.x() / 4;  // graded and anisotropic
+    c.x.push_back(p);
+    c.m.push_back(Metric2::fromSizes(h, 0.4 * h, p.y()));
+  }
+  return c;
+}
+
+std::vector<std::vector<int>> brute(const Cloud& c, double r) {
+  std::vector<std::vector<int>> rows(c.x.size());
+  for (int i = 0; i < int(c.x.size()); ++i)
+    for (int j = 0; j < int(c.x.size()); ++j)
+      if (i != j && withinMetricRadius(c.x[j] - c.x[i], c.m[i], c.m[j], r)) rows[i].push_back(j);
+  return rows;
+}
+
+} // namespace
+
+TEST(Adjacency, BuildEqualsBruteForceAndIsSymmetric) {
+  const Cloud c = randomCloud(3000, 7);
+  const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
+  ASSERT_EQ(a.size(), 3000);
+  EXPECT_TRUE(a.isSymmetric());
+  const auto want = brute(c, 1.7);
+  long total = 0;
+  for (int i = 0; i < a.size(); ++i) {
+    const auto row = a.neighbours(i);
+    EXPECT_EQ(std::vector<int>(row.begin(), row.end()), want[i]) << i;
+    total += long(row.size());
+  }
+  EXPECT_GT(total, 3000);  // the test is not vacuous
+}
+
+TEST(Adjacency, RefreshAfterSmallMovesEqualsRebuild) {
+  // a jittered packing (the refresh relies on every new neighbour being within two hops)
+  Cloud c;
+  std::mt19937_64 jr(4);
+  std::uniform_real_distribution<double> ju(-1, 1);
+  for (int a = 0; a < 50; ++a)
+    for (int b = 0; b < 40; ++b) {
+      const double h = 0.05 * (1 + 0.1 * std::sin(0.1 * a));
+      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * ju(jr), 0.05 * 0.866 * b + 0.005 * ju(jr)));
+      c.m.push_back(Metric2::fromSizes(h, 0.9 * h, 0.3));
+    }
+  const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> g(0, 0.02);
+  for (int i = 0; i < int(c.x.size()); ++i) c.x[i] += 0.1 * Vec2(g(rng), g(rng));  // ≈ 0.002 ≪ h
+  const AdjacencyLists r = refreshAdjacency(a, c.x, c.m, 1.7);
+  const AdjacencyLists b = buildAdjacency(c.x, c.m, 1.7);
+  EXPECT_TRUE(r.isSymmetric());
+  EXPECT_EQ(r.offsets, b.offsets);
+  EXPECT_EQ(r.ids, b.ids);
+}
+
+TEST(Adjacency, IsSymmetricDetectsBrokenLists) {
+  AdjacencyLists a;
+  a.offsets = {0, 1, 1};
+  a.ids = {1};
+  EXPECT_FALSE(a.isSymmetric());
+  a.offsets = {0, 1, 2};
+  a.ids = {1, 0};
+  EXPECT_TRUE(a.isSymmetric());
+}

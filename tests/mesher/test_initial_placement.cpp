@@ -1,0 +1,143 @@
+#include "mesher/initial_placement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+using namespace ablmg;
+using namespace ablmg::mesher;
+
+namespace {
+
+Domain starWithHole(std::uint64_t seed, bool hole) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.6, 1.4);
+  BoundaryLoop outer;
+  const int n = 9;
+  for (int k = 0; k < n; ++k) {
+    const double t = 2 * std::numbers::pi * k / n;
+    const double r = (k % 2 ? 0.5 : 1.0) * u(rng) * 3;  // alternating radii: concave
+    outer.points.emplace_back(r * std::cos(t), r * std::sin(t));
+  }
+  std::vector<BoundaryLoop> holes;
+  if (hole) {
+    BoundaryLoop h;
+    h.points = {{-0.4, -0.3}, {0.4, -0.3}, {0.4, 0.3}, {-0.4, 0.3}};
+    holes.push_back(h);
+  }
+  return Domain(outer, holes);
+}
+
+} // namespace
+
+TEST(DomainGeometry, InsideAgreesWithDomainContains) {
+  for (int s = 0; s < 6; ++s) {
+    const Domain d = s == 5 ? Domain::disk({1, 2}, 3, 300) : starWithHole(s, s % 2);
+    const DomainGeometry geo(d);
+    const auto [lo, hi] = geo.boundingBox();
+    std::mt19937 rng(s);
+    std::uniform_real_distribution<double> ux(lo.x() - 0.5, hi.x() + 0.5), uy(lo.y() - 0.5, hi.y() + 0.5);
+    int disagree = 0;
+    for (int q = 0; q < 4000; ++q) {
+      const Vec2 p(ux(rng), uy(rng));
+      if (geo.inside(p) != d.contains(p)) ++disagree;
+    }
+    EXPECT_EQ(disagree, 0) << "domain " << s;
+  }
+}
+
+TEST(DomainGeometry, ArcParametrisation) {
+  const Domain d = Domain::rectangle(0, 0, 2, 1);
+  const DomainGeometry geo(d);
+  EXPECT_DOUBLE_EQ(geo.loops()[0].length, 6.0);
+  EXPECT_TRUE(geo.pointAt(0, 2.5).isApprox(Vec2(2, 0.5)));
+  EXPECT_TRUE(geo.pointAt(0, 6.5).isApprox(Vec2(0.5, 0)));  // wraps
+  EXPECT_DOUBLE_EQ(geo.indexArc(0, 2.5), 1.5);
+  EXPECT_TRUE(geo.tangentAt(0, 3.5).isApprox(Vec2(-1, 0)));
+  EXPECT_NEAR(geo.metricDistanceToBoundary({1, 0.3}, Metric2::isotropic(0.1), 1.0), 3.0, 1e-12);
+}
+
+TEST(InitialPlacement, BoundaryPiecesHaveEqualMetricLength) {
+  // h = 0.1 on a 1 × 0.35 rectangle: sides split into round(10) and round(3.5) = 4 pieces.
+  const Domain d = Domain::rectangle(0, 0, 1, 0.35);
+  const DomainGeometry geo(d);
+  ConstantMetricField m(Metric2::isotropic(0.1));
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, m, nodes, arc);
+  EXPECT_EQ(nodes.size(), 2 * 10 + 2 * 4);
+  int vertices = 0;
+  for (int i = 0; i < nodes.size(); ++i) {
+    vertices += nodes.kinds[i] == NodeKind::Vertex;
+    const Vec2 e = nodes.positions[(i + 1) % nodes.size()] - nodes.positions[i];
+    const double len = e.norm();
+    EXPECT_TRUE(std::abs(len - 0.1) < 1e-9 || std::abs(len - 0.0875) < 1e-9) << i << " " << len;
+  }
+  EXPECT_EQ(vertices, 4);
+}
+
+TEST(InitialPlacement, GradedBoundaryFollowsTheMetric) {
+  // h = 0.05 + 0.2 x along the bottom of the unit square: piece metric lengths all ≈ equal.
+  const Domain d = Domain::rectangle(0, 0, 1, 1);
+  const DomainGeometry geo(d);
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, "0.05+0.2*x", "0.05+0.2*x", "0");
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, m, nodes, arc);
+  std::vector<double> xs;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.positions[i].y() == 0.0) xs.push_back(nodes.positions[i].x());
+  const double total = std::log(0.25 / 0.05) / 0.2;  // ∫ dx / h
+  ASSERT_EQ(int(xs.size()), int(std::lround(total)) + 1);
+  for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
+    const double piece = std::log((0.05 + 0.2 * xs[k + 1]) / (0.05 + 0.2 * xs[k])) / 0.2;
+    EXPECT_NEAR(piece, total / (xs.size() - 1), 0.01);
+  }
+}
+
+TEST(InitialPlacement, ConstantMetricLatticeIsExactlyHexagonal) {
+  const Domain d = Domain::rectangle(0, 0, 3, 2);
+  const DomainGeometry geo(d);
+  for (const Metric2 metric : {Metric2::isotropic(0.1), Metric2::fromSizes(0.2, 0.05, 0.7)}) {
+    ConstantMetricField m(metric);
+    NodeSet nodes;
+    std::vector<double> arc;
+    placeBoundaryNodes(geo, m, nodes, arc);
+    const int nb = nodes.size();
+    placeInteriorNodes(geo, m, nodes, 0.1);
+    ASSERT_GT(nodes.size(), nb + 100);
+    // every interior lattice node's nearest interior node is at metric distance 1, and a node
+    // far from the boundary has exactly 6 at that distance
+    int far = 0;
+    for (int i = nb; i < nodes.size(); ++i) {
+      double best = 1e300;
+      int six = 0;
+      for (int j = nb; j < nodes.size(); ++j) {
+        if (j == i) continue;
+        const double l = metric.length(nodes.positions[j] - nodes.positions[i]);
+        best = std::min(best, l);
+        six += std::abs(l - 1) < 1e-9;
+      }
+      EXPECT_GE(best, 0.75 - 1e-12);  // the acceptance distance, also for pocket seeds near the wall
+      EXPECT_TRUE(geo.inside(nodes.positions[i]));
+      if (geo.metricDistanceToBoundary(nodes.positions[i], metric, 10) > 2.5) {
+        EXPECT_NEAR(best, 1.0, 1e-9);
+        EXPECT_EQ(six, 6);
+        ++far;
+      }
+    }
+    EXPECT_GT(far, 10);
+  }
+}
+
+TEST(InitialPlacement, PredictedCountEulerCorrection) {
+  // (2/√3) A_M + Nb/2 + 1 − holes
+  EXPECT_EQ(predictedNodeCount(std::sqrt(3.0) / 2 * 100, 40, 0), 100 + 20 + 1);
+  EXPECT_EQ(predictedNodeCount(std::sqrt(3.0) / 2 * 100, 40, 1), 100 + 20);
+  const Domain d = Domain::rectangle(0, 0, 2, 1);
+  const DomainGeometry geo(d);
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, "0.1", "0.05", "0.3");
+  EXPECT_NEAR(metricArea(d, geo, m, 128), 2.0 / (0.1 * 0.05), 1e-6 * 400);
+}

@@ -1,0 +1,80 @@
+#include "mesher/adjacency.hpp"
+#include "mesher/population.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ablmg;
+using namespace ablmg::mesher;
+
+namespace {
+
+/// Unit hexagonal lattice (metric h) on a rhombic patch, plus the metrics.
+void hexPatch(double h, int n, std::vector<Vec2>& x, std::vector<Metric2>& m, const Vec2& origin = Vec2::Zero()) {
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      x.push_back(origin + h * Vec2(a + 0.5 * b, std::sqrt(3.0) / 2 * b));
+      m.push_back(Metric2::isotropic(h));
+    }
+}
+
+} // namespace
+
+TEST(Population, OverlapRatioIsSixInsideALatticeAndTwoOnALine) {
+  std::vector<Vec2> x;
+  std::vector<Metric2> m;
+  hexPatch(0.1, 9, x, m);
+  const auto a = overlapRatios(x, m, buildAdjacency(x, m, 1.7));
+  EXPECT_NEAR(a[4 * 9 + 4], 6.0, 1e-9);  // centre node
+  EXPECT_NEAR(a[0 * 9 + 4], 4.0, 1e-9);  // edge of the patch: 4 touching neighbours
+
+  std::vector<Vec2> line;
+  std::vector<Metric2> ml;
+  for (int k = 0; k < 7; ++k) {
+    line.emplace_back(0.2 * k, 0.0);
+    ml.push_back(Metric2::fromSizes(0.2, 0.05, 0.0));
+  }
+  const auto b = overlapRatios(line, ml, buildAdjacency(line, ml, 1.7));
+  EXPECT_NEAR(b[3], 2.0, 1e-9);
+  // overlap raises it: squeeze the line by 20 %
+  for (auto& p : line) p *= 0.8;
+  const auto c = overlapRatios(line, ml, buildAdjacency(line, ml, 1.7));
+  EXPECT_GT(c[3], 2.5);
+}
+
+TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
+  const Domain d = Domain::rectangle(-1, -1, 3, 3);
+  const DomainGeometry geo(d);
+  ConstantMetricField field(Metric2::isotropic(0.1));
+  std::vector<Vec2> x;
+  std::vector<Metric2> m;
+  hexPatch(0.1, 15, x, m);
+  // vacancy at lattice node (7,7): drop it; interstitial: a node inside the triangle (3,3),(4,3),(3,4)
+  const Vec2 hole = x[7 * 15 + 7];
+  x.erase(x.begin() + 7 * 15 + 7);
+  m.pop_back();
+  const Vec2 extra = (x[3 * 15 + 3] + x[4 * 15 + 3] + x[3 * 15 + 4]) / 3;
+  x.push_back(extra);
+  m.push_back(Metric2::isotropic(0.1));
+  NodeSet nodes;
+  nodes.positions = x;
+  nodes.kinds.assign(x.size(), NodeKind::Interior);
+  nodes.loops.assign(x.size(), -1);
+  nodes.arc.assign(x.size(), -1.0);
+  BubbleSystem sys(geo, nodes, std::vector<double>(x.size(), -1.0));
+  sys.updateMetrics(field);
+  const int before = sys.size();
+  PopulationOptions o;  // no steering
+  const PopulationChange c = adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
+  EXPECT_EQ(c.deleted, 1);
+  EXPECT_GE(c.inserted, 1);
+  bool filled = false, removed = true;
+  for (const Vec2& p : sys.nodes().positions) {
+    filled = filled || (p - hole).norm() < 0.03;
+    removed = removed && (p - extra).norm() > 1e-12;
+  }
+  EXPECT_TRUE(filled);
+  EXPECT_TRUE(removed);
+  EXPECT_EQ(sys.size(), before - c.deleted + c.inserted);
+}
