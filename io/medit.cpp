@@ -30,9 +30,14 @@ long readCount(TextScanner& s, const char* what, int numbersPerEntry) {
   return n;
 }
 
-/// Skips the numbers of an unknown section up to the next keyword.
+/// Skips the numbers and quoted strings of an unknown section (Corners, Ridges, FreeFem's
+/// Identifier "..." and Geometry "..."), up to the next keyword.
 void skipSection(TextScanner& s) {
-  while (!s.atEnd() && TextScanner::isNumber(s.peek())) s.next("number");
+  while (!s.atEnd()) {
+    if (s.skipQuotedString()) continue;
+    if (!TextScanner::isNumber(s.peek())) break;
+    s.next("number");
+  }
 }
 
 void readHeader(TextScanner& s, int& dim, bool dimRequired) {

@@ -64,6 +64,18 @@ std::string_view TextScanner::next(const char* what) {
   return tok;
 }
 
+bool TextScanner::skipQuotedString() {
+  skipSpace();
+  if (pos_ >= text_.size() || text_[pos_] != '"') return false;
+  lastLine_ = curLine_;
+  const int startLine = curLine_;
+  for (++pos_; pos_ < text_.size() && text_[pos_] != '"'; ++pos_)
+    if (text_[pos_] == '\n') ++curLine_;
+  ABLMG_REQUIRE(pos_ < text_.size(), name_ << ":" << startLine << ": unterminated quoted string");
+  ++pos_;
+  return true;
+}
+
 std::string TextScanner::where() const { return name_ + ":" + std::to_string(lastLine_) + ": "; }
 
 /// A printable rendering of a token for messages (garbage bytes become '?', long tokens cut).

@@ -26,6 +26,9 @@ public:
   /// Next token as a finite double / an int in [lo, hi]; errors name the token and `what`.
   double nextDouble(const char* what);
   long nextInt(const char* what, long lo, long hi);
+  /// If the next token starts with '"', consumes the quoted string (it may contain spaces,
+  /// '#' and newlines; medit's Identifier/Geometry sections) and returns true.
+  bool skipQuotedString();
   /// Line of the last token returned by next() (1-based).
   int line() const { return lastLine_; }
   const std::string& name() const { return name_; }

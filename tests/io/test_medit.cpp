@@ -170,3 +170,16 @@ TEST(Medit, SurfaceMeshWritesDimension3) {
   EXPECT_THROW(io::readMesh(p), InputError);  // z ≠ 0: not a planar mesh
   std::filesystem::remove(p);
 }
+
+// freefem_square.mesh was written by FreeFem++ 4.9: savemesh(square(3, 2, [2*x, y]), ...).
+// It carries Identifier/Geometry sections with quoted strings and "Dimension" on its own line.
+TEST(Medit, ReadsRealFreeFemOutput) {
+  const Mesh2 m = io::readMesh(kData + "/freefem_square.mesh");
+  EXPECT_EQ(m.numVertices(), 12);
+  EXPECT_EQ(m.numTriangles(), 12);
+  ASSERT_EQ(m.boundaryEdges.size(), 10u);
+  EXPECT_EQ(m.boundaryEdges[3].ref, 2);
+  const auto v = m.validate(2.0);
+  EXPECT_TRUE(v.ok) << v.firstProblem;
+  EXPECT_THROW(io::parseMesh("MeshVersionFormatted 1\nDimension 2\nIdentifier\n\"never closed\n", "q.mesh"), InputError);
+}
