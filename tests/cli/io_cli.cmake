@@ -32,3 +32,17 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
   file(WRITE ${_out}/bad_poly.json "{\"domain\": {\"poly\": \"${_data}/open_loop.poly\"}, \"metric\": {\"h\": \"0.1\"}}\n")
   ablmg_cli_failure(mesh_open_loop "open_loop.poly:[0-9]+: boundary is not closed at vertex" mesh ${_out}/bad_poly.json -o ${_out}/mesh_open_loop.mesh)
 endif()
+
+# Successful runs (once meshing works end to end): output files exist afterwards.
+if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
+  add_test(NAME cli.remesh_square
+           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square_scalar.sol -out ${_out}/remesh_square.mesh -hmax 0.2 -hgrad 1.5)
+  set_tests_properties(cli.remesh_square PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "-> .*remesh_square.mesh")
+endif()
+if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
+  file(WRITE ${_out}/disk.json "{\"domain\": {\"disk\": {\"center\": [0, 0], \"radius\": 1, \"samples\": 256}}, \"metric\": {\"h1\": \"0.3\", \"h2\": \"0.1\", \"theta\": \"atan2(y, x)\"}}\n")
+  add_test(NAME cli.mesh_disk_bubbles COMMAND ablmg mesh ${_out}/disk.json --bubbles-only -o ${_out}/disk_bubbles.png -o ${_out}/disk_bubbles.vtu --seed 2)
+  set_tests_properties(cli.mesh_disk_bubbles PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "vertices, 0 triangles")
+  add_test(NAME cli.mesh_disk COMMAND ablmg mesh ${_out}/disk.json -o ${_out}/disk.mesh -o ${_out}/disk.png --report ${_out}/disk_report.json)
+  set_tests_properties(cli.mesh_disk PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")
+endif()
