@@ -1,19 +1,20 @@
 #include "io/stl.hpp"
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 
-#include <cstdio>
-#include <fstream>
 #include <iomanip>
 
 namespace ablmg::io {
 
 void writeStl(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
               const std::vector<std::array<int, 3>>& triangles, const std::string& solidName) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream os(tmp);
-    ABLMG_REQUIRE(os, path << ": cannot open for writing");
+  const long n = long(vertices.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      ABLMG_REQUIRE(triangles[t][k] >= 0 && triangles[t][k] < n,
+                    path << ": triangle " << t << " has vertex id " << triangles[t][k] << " out of range [0, " << n << ")");
+  writeFileAtomically(path, [&](std::ostream& os) {
     os << std::setprecision(17) << "solid " << solidName << "\n";
     for (const auto& t : triangles) {
       const Eigen::Vector3d n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).normalized();
@@ -25,16 +26,7 @@ void writeStl(const std::string& path, const std::vector<Eigen::Vector3d>& verti
       os << "    endloop\n  endfacet\n";
     }
     os << "endsolid " << solidName << "\n";
-    os.flush();
-    if (!os) {
-      std::remove(tmp.c_str());
-      throw Error(path + ": write failed");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": cannot rename temporary file into place");
-  }
+  });
 }
 
 } // namespace ablmg::io

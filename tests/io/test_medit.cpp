@@ -183,3 +183,11 @@ TEST(Medit, ReadsRealFreeFemOutput) {
   EXPECT_TRUE(v.ok) << v.firstProblem;
   EXPECT_THROW(io::parseMesh("MeshVersionFormatted 1\nDimension 2\nIdentifier\n\"never closed\n", "q.mesh"), InputError);
 }
+
+TEST(Medit, Dimension3PlanarTensorSol) {
+  const auto r = io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0 9 0 1\nEnd\n", "d3.sol");
+  EXPECT_EQ(r[0].m11(), 4);
+  EXPECT_EQ(r[0].m12(), 1);
+  EXPECT_EQ(r[0].m22(), 9);
+  EXPECT_THROW(io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0.5 9 0 1\nEnd\n", "d3.sol"), InputError);
+}

@@ -54,3 +54,17 @@ TEST(Vtu, WrongFieldSizeNamesTheField) {
   }
   EXPECT_FALSE(std::filesystem::exists("/tmp/never_written_ablmg.vtu"));
 }
+
+TEST(Vtu, SurfaceTrianglesIn3D) {
+  const std::string p = (std::filesystem::temp_directory_path() / ("ablmg_vtu3_" + std::to_string(::getpid()) + ".vtu")).string();
+  io::writeVtu(p, {{0, 0, 0}, {1, 0, 0}, {0, 1, 2}}, {{0, 1, 2}}, {}, {{"area", 1, {1.5}}});
+  vtkNew<vtkXMLUnstructuredGridReader> r;
+  r->SetFileName(p.c_str());
+  r->Update();
+  double x[3];
+  r->GetOutput()->GetPoint(2, x);
+  EXPECT_EQ(x[2], 2.0);
+  EXPECT_DOUBLE_EQ(r->GetOutput()->GetCellData()->GetArray("area")->GetComponent(0, 0), 1.5);
+  EXPECT_THROW(io::writeVtu(p, {{0, 0, 0}}, {{0, 1, 2}}), InputError);  // bad vertex id
+  std::filesystem::remove(p);
+}
