@@ -1,0 +1,101 @@
+#pragma once
+/// The adaptive solve loop (issue 11): solve → errors → recover → metric → remesh, per cycle.
+///
+///   cycle k:  mesh_k ─ fem::solvePoisson ─▶ u_k ─ errors vs exact u ─▶ CycleReport
+///             u_k ─ recoverHessians ─▶ H_k ─ metricFromHessians(N_{k+1}) [─ limitGradation]
+///                 ─▶ M_k (per vertex of mesh_k) ─ mesher::meshDomain(domain, BackgroundMetricField(mesh_k, M_k))
+///                 ─▶ mesh_{k+1}
+///
+/// mesh_0 is meshDomain with the uniform isotropic metric whose complexity is N_0 vertices
+/// (size h = sqrt(2|Ω| / (√3 N_0)), see metric_from_hessian.hpp for the complexity ↔ vertex
+/// relation). N_k = targetVertices[min(k, size − 1)]: an increasing list traces a convergence
+/// curve, a single value iterates at fixed complexity.
+///
+/// Two ways to drive it:
+///  - runAdaptiveLoop(problem, options, onCycle): everything above; onCycle sees each cycle's
+///    mesh, solution, errors and metrics (for output: the library never prints or writes files).
+///  - the steps on their own, for a solver with its own u_h: uniformMesh(), adaptMetric()
+///    (mesh + u_h → per-vertex metric), remesh() (mesh + metric → new mesh).
+///
+/// Row k of the report: vertices/triangles/errors/quality of mesh_k; t_mesh = time to build
+/// mesh_k, t_solve = assembly + solve on it, t_recover/t_metric = building M_k from u_k (0 in
+/// the last cycle, where no next mesh is built). Times are wall seconds (steady clock), the
+/// only non-deterministic numbers in the report.
+#include "adapt/gradation.hpp"
+#include "adapt/hessian_recovery.hpp"
+#include "adapt/metric_from_hessian.hpp"
+#include "fem/error_norms.hpp"
+#include "fem/solve.hpp"
+#include "fem/test_problems.hpp"
+#include "mesher/mesher.hpp"
+#include <functional>
+#include <vector>
+
+namespace ablmg::adapt {
+
+struct AdaptOptions {
+  std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
+  int cycles = 0;                     ///< 0 = targetVertices.size(); more repeats the last N
+  HessianMethod hessian = HessianMethod::LeastSquares;
+  MetricOptions metric;               ///< p, hmin, hmax, anisotropy; targetVertices is set per cycle
+  double hgrad = 0;                   ///< > 1: gradation (gradation.hpp); ≤ 0: off
+  mesher::MeshOptions mesh;
+  fem::SolveOptions solve;
+  int errorDegree = 8;                ///< quadrature degree of the error norms (fem/error_norms.hpp)
+};
+
+/// Throws InputError naming the field and value.
+void validate(const AdaptOptions& options);
+
+struct QualitySummary {
+  double mean = 0, min = 0;  ///< of q(T) = 4√3 |T|_M / Σ |e|²_M ∈ (0, 1], 1 = equilateral in M
+};
+/// Element quality in the metric the mesh was built for (per-vertex metrics, the triangle's
+/// metric being the mean of its three vertices').
+QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics);
+
+struct CycleReport {
+  int cycle = 0;
+  double targetVertices = 0;
+  long vertices = 0, triangles = 0;
+  double l2 = 0, h1 = 0, l2Interp = 0, maxVertex = 0;
+  double qMean = 0, qMin = 0;
+  double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
+  long predictedVertices = 0;   ///< the mesher's estimate N* for mesh_k
+  int gradationSweeps = 0;
+};
+
+struct AdaptReport {
+  std::vector<CycleReport> cycles;
+  int rateWindow = 0;                 ///< cycles used by the fitted rates (last min(4, K))
+  double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
+  bool errorsDecrease = false;        ///< l2 and h1 fall from the first cycle to the last
+};
+
+/// What onCycle sees (references valid during the call only).
+struct CycleData {
+  const CycleReport& report;
+  const Mesh2& mesh;
+  const std::vector<Metric2>& meshMetric;   ///< the metric mesh_k was built for, per vertex
+  const Eigen::VectorXd& u;                 ///< u_h per vertex
+  const fem::ErrorReport& errors;           ///< with per-element L2/H1 errors
+  const std::vector<Metric2>& nextMetric;   ///< M_k per vertex of mesh_k (empty in the last cycle)
+};
+
+AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions& options,
+                            const std::function<void(const CycleData&)>& onCycle = {});
+
+/// mesh_0: meshDomain with the uniform isotropic metric of N vertices.
+mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options = {});
+
+/// M for the next mesh: recoverHessians → metricFromHessians(targetVertices) → gradation if
+/// options.hgrad > 1. Per vertex of `mesh`. Times (seconds) go to tRecover/tMetric if non-null.
+std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
+                                 const AdaptOptions& options, double* tRecover = nullptr, double* tMetric = nullptr,
+                                 GradationStats* gradation = nullptr);
+
+/// meshDomain(domain, BackgroundMetricField(mesh, metric), options).
+mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
+                          const mesher::MeshOptions& options = {});
+
+} // namespace ablmg::adapt
