@@ -58,14 +58,36 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
 }
 
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> x, std::span<const Metric2> m,
-                                double radius) {
+                                double radius, std::span<const char> moved) {
   const int n = old.size();
+  std::vector<char> dirty;
+  if (!moved.empty()) {
+    std::vector<char> near(std::size_t(n), 0);
+    dirty.assign(std::size_t(n), 0);
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      bool d = moved[i] != 0;
+      for (int j : old.neighbours(i)) d = d || moved[j];
+      near[i] = char(d);
+    }
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      bool d = near[i] != 0;
+      for (int j : old.neighbours(i)) d = d || near[j];
+      dirty[i] = char(d);
+    }
+  }
   std::vector<std::vector<int>> rows(n);
 #pragma omp parallel
   {
     std::vector<int> cand;
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
+      if (!dirty.empty() && !dirty[i]) {
+        const auto row = old.neighbours(i);
+        rows[i].assign(row.begin(), row.end());
+        continue;
+      }
       cand.clear();
       for (int j : old.neighbours(i)) {
         cand.push_back(j);

@@ -25,7 +25,10 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const M
 /// Refresh after the bubbles moved (§3.3): candidates of i are i's list and its neighbours'
 /// lists (the two-ring), re-tested at the new positions. Symmetric, since the two-ring relation
 /// is. Valid while no bubble moved more than ~(radius − 1.5)/2 since `old` was built.
+/// If `moved` is given (one flag per node: moved since `old` was built), only rows with a
+/// moved node within two hops are recomputed (the others cannot have changed, and the two-hop
+/// rule keeps the result symmetric); the result is the same as without the mask.
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> positions,
-                                std::span<const Metric2> metrics, double radius);
+                                std::span<const Metric2> metrics, double radius, std::span<const char> moved = {});
 
 } // namespace ablmg::mesher

@@ -101,11 +101,13 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
   force_.resize(std::size_t(n));
   const auto& x = nodes_.positions;
   double residual = 0;
-  std::vector<double> res(std::size_t(n), 0.0);
+  std::vector<double>& res = res_;
+  res.assign(std::size_t(n), 0.0);
+  active_.resize(std::size_t(n), 1);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     Vec2 f = Vec2::Zero();
-    if (nodes_.kinds[i] != NodeKind::Vertex) {
+    if (nodes_.kinds[i] != NodeKind::Vertex && active_[i]) {
       const Metric2& mi = metrics_[i];
       const bool segment = nodes_.kinds[i] == NodeKind::Segment;
       for (int j : adj.neighbours(i)) {
@@ -136,8 +138,13 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
 void BubbleSystem::advance(const DynamicsParams& p) {
   const int n = nodes_.size();
   const double dtm = p.dt / p.mass;
+  active_.resize(std::size_t(n), 1);
+  moved_.assign(std::size_t(n), 0);
+  movedSinceRefresh_.resize(std::size_t(n), 1);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
+    if (!active_[i]) continue;
+    const Vec2 before = nodes_.positions[i];
     switch (nodes_.kinds[i]) {
       case NodeKind::Vertex: break;
       case NodeKind::Segment: {
@@ -169,7 +176,40 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         break;
       }
     }
+    if (metrics_[i].squaredLength(nodes_.positions[i] - before) > moveEps2_) {
+      moved_[i] = 1;
+      movedSinceRefresh_[i] = 1;
+    }
   }
+}
+
+long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, double dt) {
+  const int n = nodes_.size();
+  const double eps = 0.1 * sleepBelow * dt;  // a move this small (metric) wakes nobody
+  moveEps2_ = eps * eps;
+  std::vector<char> next(std::size_t(n), 0);
+  moved_.resize(std::size_t(n), 1);
+  kicked_.resize(std::size_t(n), 0);
+  for (int i = 0; i < n; ++i) moved_[i] = char(moved_[i] | kicked_[i]);
+  long count = 0;
+#pragma omp parallel for schedule(static) reduction(+ : count)
+  for (int i = 0; i < n; ++i) {
+    if (nodes_.kinds[i] == NodeKind::Vertex) continue;
+    bool a = moved_[i] != 0;
+    for (int j : adj.neighbours(i)) a = a || moved_[j];
+    if (!a && active_[i]) a = res_[i] > sleepBelow || std::sqrt(metrics_[i].squaredLength(vel_[i])) > sleepBelow;
+    if (!a) vel_[i] = Vec2::Zero();  // asleep: force and velocity below the threshold, neighbours still
+    next[i] = char(a);
+    count += a;
+  }
+  active_.swap(next);
+  kicked_.assign(std::size_t(n), 0);
+  return count;
+}
+
+void BubbleSystem::wakeAll() {
+  active_.assign(std::size_t(nodes_.size()), 1);
+  movedSinceRefresh_.assign(std::size_t(nodes_.size()), 1);
 }
 
 std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
@@ -190,6 +230,9 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     force_[m] = force_[i];
     metrics_[m] = metrics_[i];
     if (i < int(evalPos_.size())) evalPos_[m] = evalPos_[i];
+    if (i < int(active_.size())) active_[m] = active_[i];
+    if (i < int(kicked_.size())) kicked_[m] = kicked_[i];
+    if (i < int(movedSinceRefresh_.size())) movedSinceRefresh_[m] = movedSinceRefresh_[i];
     ++m;
   }
   nodes_.positions.resize(m);
@@ -203,6 +246,9 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   force_.resize(m);
   metrics_.resize(m);
   if (int(evalPos_.size()) > m) evalPos_.resize(m);
+  active_.resize(m, 1);
+  kicked_.resize(m, 1);
+  movedSinceRefresh_.resize(m, 1);
   return map;
 }
 
@@ -218,6 +264,20 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   force_.push_back(Vec2::Zero());
   metrics_.push_back(m);
   if (evalPos_.size() + 1 == metrics_.size()) evalPos_.push_back(x);
+  const std::size_t n = metrics_.size();
+  active_.resize(n - 1, 1);
+  kicked_.resize(n - 1, 0);
+  movedSinceRefresh_.resize(n - 1, 1);
+  active_.push_back(1);
+  kicked_.push_back(1);
+  movedSinceRefresh_.push_back(1);
+}
+
+void BubbleSystem::kick(int i) {
+  active_.resize(std::size_t(nodes_.size()), 1);
+  kicked_.resize(std::size_t(nodes_.size()), 0);
+  active_[i] = 1;
+  kicked_[i] = 1;
 }
 
 } // namespace ablmg::mesher

@@ -50,11 +50,29 @@ public:
   void updateMetrics(const MetricField& field, bool all = true, double lazyDistance = 0.05);
   /// Net forces (eq. 6) from the lists; returns the residual defined above.
   double computeForces(const AdjacencyLists& adj, const DynamicsParams& p);
-  /// One Euler step using the forces of the last computeForces().
+  /// One Euler step using the forces of the last computeForces() (active bubbles only).
   void advance(const DynamicsParams& p);
 
+  /// Active set (optional; all bubbles are active until this is called). After advance():
+  /// a bubble stays or becomes active if it or one of its neighbours moved in that step;
+  /// an active bubble whose force and velocity are both ≤ sleepBelow (metric units) and whose
+  /// neighbours stood still falls asleep (velocity zeroed). Asleep bubbles are skipped by
+  /// computeForces()/advance() — their force cannot change until a neighbour moves, which wakes
+  /// them — so an already-exact lattice costs nothing. Deterministic. Returns the active count.
+  /// A step moving a bubble by ≤ 0.1·sleepBelow·dt (metric) does not count as moving (round-off
+  /// motion of an exact lattice must not keep it awake); such moves change a sleeper's force
+  /// by ≲ 0.1·sleepBelow. The final residual is computed with everyone awake.
+  long updateActivity(const AdjacencyLists& adj, double sleepBelow, double dt);
+  void wakeAll();
+  /// Wake bubble i now and its neighbours at the next updateActivity() (population edits).
+  void kick(int i);
+  /// Bubbles that moved since the last clearMoved() (for a partial adjacency refresh).
+  const std::vector<char>& movedSinceRefresh() const { return movedSinceRefresh_; }
+  void clearMoved() { movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0); }
+
   /// Population edits (§3.4). Removal keeps the relative order of the survivors; returns
-  /// old → new index map (−1 for removed). Only Interior nodes may be removed.
+  /// old → new index map (−1 for removed). Only Interior nodes may be removed. Added bubbles
+  /// are awake and kicked; the caller kicks the neighbours of removed ones.
   std::vector<int> remove(const std::vector<char>& kill);
   void addInterior(const Vec2& x, const Metric2& m);
 
@@ -70,6 +88,9 @@ private:
   NodeSet nodes_;
   std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
   std::vector<Vec2> vel_, force_;
+  std::vector<double> res_;
+  std::vector<char> active_, moved_, movedSinceRefresh_, kicked_;
+  double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
   std::vector<Metric2> metrics_;
   std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated
   bool metricsConstant_ = false;

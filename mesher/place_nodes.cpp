@@ -87,6 +87,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
 
   t = Clock::now();
   AdjacencyLists adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+  sys.clearMoved();
   st.secondsAdjacency += since(t);
 
   // 2. Dynamics (§3.2) interleaved with population control (§3.4).
@@ -98,6 +99,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   int quietPasses = 0;
   bool populationSettled = false;
   const bool constant = metric.isConstant();
+  const double sleepBelow = 0.1 * options.tolerance;  // active set: see BubbleSystem::updateActivity
 
   t = Clock::now();
   double residual = sys.computeForces(adj, p);
@@ -113,6 +115,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     t = Clock::now();
     sys.advance(p);
     if (!constant) sys.updateMetrics(metric, false);
+    st.activeBubbleSteps += sys.updateActivity(adj, sleepBelow, options.timeStep);
     ++st.steps;
     st.secondsDynamics += since(t);
 
@@ -127,6 +130,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
         quietPasses = 0;
         t = Clock::now();
         adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+        sys.clearMoved();
         st.secondsAdjacency += since(t);
         continue;
       }
@@ -135,11 +139,13 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     if (!populationSettled && done >= popUntil) populationSettled = true;
     if (done % std::max(1, options.adjacencyRefresh) == 0) {
       t = Clock::now();
-      adj = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+      adj = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
+      sys.clearMoved();
       st.secondsAdjacency += since(t);
     }
   }
   t = Clock::now();
+  sys.wakeAll();  // the final residual covers every bubble
   st.finalResidual = sys.computeForces(adj, p);
   st.secondsDynamics += since(t);
   st.hitStepCap = st.steps >= options.maxSteps && st.finalResidual >= options.tolerance;

@@ -41,6 +41,7 @@ struct PlacementStats {
   long initialNodes = 0, finalNodes = 0;
   long inserted = 0, deleted = 0;
   int steps = 0;
+  long activeBubbleSteps = 0;  ///< Σ over steps of the bubbles awake (the dynamics' real work; see BubbleSystem::updateActivity)
   bool hitStepCap = false;
   double initialResidual = 0, finalResidual = 0;  ///< largest net bubble force in metric units (= c × terminal velocity)
   double secondsInitial = 0, secondsDynamics = 0, secondsAdjacency = 0, secondsPopulation = 0;

@@ -124,6 +124,9 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
     --insBudget;
   }
 
+  for (int i = 0; i < n; ++i)  // wake the neighbourhood of every deletion
+    if (kill[i])
+      for (int j : adj.neighbours(i)) sys.kick(j);
   if (change.deleted) sys.remove(kill);
   if (!added.empty()) {
     std::vector<Vec2> pts;
