@@ -96,42 +96,49 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   }
 }
 
+Vec2 BubbleSystem::netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const {
+  const auto& x = nodes_.positions;
+  Vec2 f = Vec2::Zero();
+  const Metric2& mi = metrics_[i];
+  const bool segment = nodes_.kinds[i] == NodeKind::Segment;
+  for (int j : adj.neighbours(i)) {
+    if (segment && !sameChain(i, j)) continue;  // 1D packing along the loop piece
+    const Vec2 d = x[j] - x[i];
+    const double l2 = d.squaredNorm();
+    if (!(l2 > 0)) continue;
+    const double a = std::sqrt(mi.squaredLength(d)), b = std::sqrt(metrics_[j].squaredLength(d));
+    const double w = 2.0 / (1.0 / a + 1.0 / b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
+    const double fw = interBubbleForce(w, p.k0);
+    if (fw == 0.0) continue;
+    const double l = std::sqrt(l2);
+    const double l0 = restLength(0.5 * l / a, 0.5 * l / b);  // eq. (8)
+    f -= (fw * l0 / l) * d;
+  }
+  if (segment) {
+    const Vec2 t = geo_->tangentAt(nodes_.loops[i], s_[i]);
+    f = f.dot(t) * t;
+  }
+  return f;
+}
+
 double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsParams& p) {
   const int n = nodes_.size();
   force_.resize(std::size_t(n));
-  const auto& x = nodes_.positions;
-  double residual = 0;
-  std::vector<double>& res = res_;
-  res.assign(std::size_t(n), 0.0);
+  res_.assign(std::size_t(n), 0.0);
   active_.resize(std::size_t(n), 1);
+  list_.clear();
+  for (int i = 0; i < n; ++i)
+    if (active_[i] && nodes_.kinds[i] != NodeKind::Vertex) list_.push_back(i);
+    else force_[i] = Vec2::Zero();
+  const int m = int(list_.size());
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    Vec2 f = Vec2::Zero();
-    if (nodes_.kinds[i] != NodeKind::Vertex && active_[i]) {
-      const Metric2& mi = metrics_[i];
-      const bool segment = nodes_.kinds[i] == NodeKind::Segment;
-      for (int j : adj.neighbours(i)) {
-        if (segment && !sameChain(i, j)) continue;  // 1D packing along the loop piece
-        const Vec2 d = x[j] - x[i];
-        const double l2 = d.squaredNorm();
-        if (!(l2 > 0)) continue;
-        const double a = std::sqrt(mi.squaredLength(d)), b = std::sqrt(metrics_[j].squaredLength(d));
-        const double w = 2.0 / (1.0 / a + 1.0 / b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
-        const double fw = interBubbleForce(w, p.k0);
-        if (fw == 0.0) continue;
-        const double l = std::sqrt(l2);
-        const double l0 = restLength(0.5 * l / a, 0.5 * l / b);  // eq. (8)
-        f -= (fw * l0 / l) * d;
-      }
-      if (nodes_.kinds[i] == NodeKind::Segment) {
-        const Vec2 t = geo_->tangentAt(nodes_.loops[i], s_[i]);
-        f = f.dot(t) * t;
-      }
-      res[i] = std::sqrt(mi.squaredLength(f));
-    }
-    force_[i] = f;
+  for (int k = 0; k < m; ++k) {
+    const int i = list_[k];
+    force_[i] = netForce(i, adj, p);
+    res_[i] = std::sqrt(metrics_[i].squaredLength(force_[i]));
   }
-  for (int i = 0; i < n; ++i) residual = std::max(residual, res[i]);
+  double residual = 0;
+  for (int i : list_) residual = std::max(residual, res_[i]);
   return residual;
 }
 
@@ -141,9 +148,10 @@ void BubbleSystem::advance(const DynamicsParams& p) {
   active_.resize(std::size_t(n), 1);
   moved_.assign(std::size_t(n), 0);
   movedSinceRefresh_.resize(std::size_t(n), 1);
+  const int m = int(list_.size());
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    if (!active_[i]) continue;
+  for (int k = 0; k < m; ++k) {
+    const int i = list_[k];
     const Vec2 before = nodes_.positions[i];
     switch (nodes_.kinds[i]) {
       case NodeKind::Vertex: break;
@@ -187,18 +195,24 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   const int n = nodes_.size();
   const double eps = 0.1 * sleepBelow * dt;  // a move this small (metric) wakes nobody
   moveEps2_ = eps * eps;
-  std::vector<char> next(std::size_t(n), 0);
   moved_.resize(std::size_t(n), 1);
   kicked_.resize(std::size_t(n), 0);
-  for (int i = 0; i < n; ++i) moved_[i] = char(moved_[i] | kicked_[i]);
-  long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : count)
+  // Candidates: bubbles awake now, and the neighbours of every bubble that moved (or was kicked).
+  std::vector<char> next(std::size_t(n), 0);
   for (int i = 0; i < n; ++i) {
-    if (nodes_.kinds[i] == NodeKind::Vertex) continue;
-    bool a = moved_[i] != 0;
-    for (int j : adj.neighbours(i)) a = a || moved_[j];
+    if (!(moved_[i] || kicked_[i])) continue;
+    next[i] = 1;
+    for (int j : adj.neighbours(i)) next[j] = 1;
+  }
+  long count = 0;
+  for (int i = 0; i < n; ++i) {
+    if (nodes_.kinds[i] == NodeKind::Vertex) {
+      next[i] = 0;
+      continue;
+    }
+    bool a = next[i] != 0;
     if (!a && active_[i]) a = res_[i] > sleepBelow || std::sqrt(metrics_[i].squaredLength(vel_[i])) > sleepBelow;
-    if (!a) vel_[i] = Vec2::Zero();  // asleep: force and velocity below the threshold, neighbours still
+    if (!a && active_[i]) vel_[i] = Vec2::Zero();  // asleep: force and velocity small, neighbours still
     next[i] = char(a);
     count += a;
   }
@@ -207,10 +221,7 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   return count;
 }
 
-void BubbleSystem::wakeAll() {
-  active_.assign(std::size_t(nodes_.size()), 1);
-  movedSinceRefresh_.assign(std::size_t(nodes_.size()), 1);
-}
+void BubbleSystem::wakeAll() { active_.assign(std::size_t(nodes_.size()), 1); }
 
 std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   const int n = nodes_.size();

@@ -50,6 +50,8 @@ public:
   void updateMetrics(const MetricField& field, bool all = true, double lazyDistance = 0.05);
   /// Net forces (eq. 6) from the lists; returns the residual defined above.
   double computeForces(const AdjacencyLists& adj, const DynamicsParams& p);
+  /// |F_i|_{M_i} from the last computeForces() (0 for asleep bubbles).
+  double forceResidual(int i) const { return res_[i]; }
   /// One Euler step using the forces of the last computeForces() (active bubbles only).
   void advance(const DynamicsParams& p);
 
@@ -63,7 +65,7 @@ public:
   /// motion of an exact lattice must not keep it awake); such moves change a sleeper's force
   /// by ≲ 0.1·sleepBelow. The final residual is computed with everyone awake.
   long updateActivity(const AdjacencyLists& adj, double sleepBelow, double dt);
-  void wakeAll();
+  void wakeAll();  ///< every bubble awake
   /// Wake bubble i now and its neighbours at the next updateActivity() (population edits).
   void kick(int i);
   /// Bubbles that moved since the last clearMoved() (for a partial adjacency refresh).
@@ -84,6 +86,8 @@ private:
   /// Segment node i and node j on the same piece of loop between two corners (j a Segment
   /// node of that piece or one of its two corners).
   bool sameChain(int i, int j) const;
+  Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
+  std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
   const DomainGeometry* geo_;
   NodeSet nodes_;
   std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)

@@ -98,9 +98,9 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   const int popUntil = std::max(popEvery, int(0.6 * options.maxSteps));
   int quietPasses = 0;
   bool populationSettled = false;
-  const bool constant = metric.isConstant();
   const double sleepBelow = 0.1 * options.tolerance;  // active set: see BubbleSystem::updateActivity
 
+  const bool constant = metric.isConstant();
   t = Clock::now();
   double residual = sys.computeForces(adj, p);
   st.secondsDynamics += since(t);
