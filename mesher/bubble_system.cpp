@@ -148,6 +148,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
   active_.resize(std::size_t(n), 1);
   moved_.assign(std::size_t(n), 0);
   movedSinceRefresh_.resize(std::size_t(n), 1);
+  disp_.resize(std::size_t(n), 0.0);
   const int m = int(list_.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < m; ++k) {
@@ -184,9 +185,11 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         break;
       }
     }
-    if (metrics_[i].squaredLength(nodes_.positions[i] - before) > moveEps2_) {
+    const double d2 = metrics_[i].squaredLength(nodes_.positions[i] - before);
+    if (d2 > moveEps2_) {
       moved_[i] = 1;
       movedSinceRefresh_[i] = 1;
+      disp_[i] += std::sqrt(d2);
     }
   }
 }
@@ -221,6 +224,17 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   return count;
 }
 
+double BubbleSystem::maxTravelSinceRefresh() const {
+  double m = 0;
+  for (double d : disp_) m = std::max(m, d);
+  return m;
+}
+
+void BubbleSystem::clearMoved() {
+  movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0);
+  disp_.assign(std::size_t(nodes_.size()), 0.0);
+}
+
 void BubbleSystem::wakeAll() { active_.assign(std::size_t(nodes_.size()), 1); }
 
 std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
@@ -244,6 +258,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     if (i < int(active_.size())) active_[m] = active_[i];
     if (i < int(kicked_.size())) kicked_[m] = kicked_[i];
     if (i < int(movedSinceRefresh_.size())) movedSinceRefresh_[m] = movedSinceRefresh_[i];
+    if (i < int(disp_.size())) disp_[m] = disp_[i];
     ++m;
   }
   nodes_.positions.resize(m);
@@ -260,6 +275,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   active_.resize(m, 1);
   kicked_.resize(m, 1);
   movedSinceRefresh_.resize(m, 1);
+  disp_.resize(m, 0.0);
   return map;
 }
 
@@ -282,6 +298,8 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   active_.push_back(1);
   kicked_.push_back(1);
   movedSinceRefresh_.push_back(1);
+  disp_.resize(n - 1, 0.0);
+  disp_.push_back(0.0);
 }
 
 void BubbleSystem::kick(int i) {

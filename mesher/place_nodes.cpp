@@ -137,7 +137,10 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       if (++quietPasses >= 2 || done >= popUntil) populationSettled = true;
     }
     if (!populationSettled && done >= popUntil) populationSettled = true;
-    if (done % std::max(1, options.adjacencyRefresh) == 0) {
+    // Refresh every k steps (§3.3), or earlier once some bubble has travelled far enough that
+    // a bubble outside its list could now be within force range.
+    if (done % std::max(1, options.adjacencyRefresh) == 0 ||
+        sys.maxTravelSinceRefresh() > 0.5 * (options.adjacencyRadius - 1.5)) {
       t = Clock::now();
       adj = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
       sys.clearMoved();
