@@ -118,7 +118,9 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
     row.maxVertex = err.maxVertex;
 
     std::vector<Metric2> next;
-    const bool last = k + 1 == cycles;
+    const bool reached = (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
+    report.stoppedEarly = reached && k + 1 < cycles;
+    const bool last = k + 1 == cycles || reached;
     if (!last) {
       GradationStats gs;
       next = adaptMetric(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), target(k + 1), options,

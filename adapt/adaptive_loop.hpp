@@ -42,6 +42,8 @@ struct AdaptOptions {
   mesher::MeshOptions mesh;
   fem::SolveOptions solve;
   int errorDegree = 8;                ///< quadrature degree of the error norms (fem/error_norms.hpp)
+  /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.
+  double stopL2 = 0, stopH1 = 0;
 };
 
 /// Throws InputError naming the field and value.
@@ -70,6 +72,7 @@ struct AdaptReport {
   int rateWindow = 0;                 ///< cycles used by the fitted rates (last min(4, K))
   double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
   bool errorsDecrease = false;        ///< l2 and h1 fall from the first cycle to the last
+  bool stoppedEarly = false;          ///< a stop criterion ended the loop before `cycles`
 };
 
 /// What onCycle sees (references valid during the call only).
@@ -79,7 +82,8 @@ struct CycleData {
   const std::vector<Metric2>& meshMetric;   ///< the metric mesh_k was built for, per vertex
   const Eigen::VectorXd& u;                 ///< u_h per vertex
   const fem::ErrorReport& errors;           ///< with per-element L2/H1 errors
-  const std::vector<Metric2>& nextMetric;   ///< M_k per vertex of mesh_k (empty in the last cycle)
+  const std::vector<Metric2>& nextMetric;   ///< M_k per vertex of mesh_k (empty in the last cycle,
+                                            ///< including one ended by a stop criterion)
 };
 
 AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions& options,
