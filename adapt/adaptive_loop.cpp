@@ -63,6 +63,14 @@ std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, d
   t0 = Clock::now();
   MetricOptions mo = options.metric;
   mo.targetVertices = targetVertices;
+  if (!std::isfinite(mo.hmax)) {  // keep a few elements across the domain where H ≈ 0
+    Vec2 lo = mesh.vertices.front(), hi = lo;
+    for (const auto& p : mesh.vertices) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    mo.hmax = std::max(0.25 * (hi - lo).norm(), 2 * mo.hmin);
+  }
   auto metric = metricFromHessians(mesh, hessians, mo);
   if (options.hgrad > 1) {
     GradationOptions go;

@@ -17,6 +17,9 @@
 ///  - the steps on their own, for a solver with its own u_h: uniformMesh(), adaptMetric()
 ///    (mesh + u_h → per-vertex metric), remesh() (mesh + metric → new mesh).
 ///
+/// hmax = ∞ in options.metric means a quarter of the current mesh's bounding-box diagonal (so
+/// that regions where u is linear still get a few elements across the domain).
+///
 /// Row k of the report: vertices/triangles/errors/quality of mesh_k; t_mesh = time to build
 /// mesh_k, t_solve = assembly + solve on it, t_recover/t_metric = building M_k from u_k (0 in
 /// the last cycle, where no next mesh is built). Times are wall seconds (steady clock), the
@@ -37,7 +40,7 @@ struct AdaptOptions {
   std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
   int cycles = 0;                     ///< 0 = targetVertices.size(); more repeats the last N
   HessianMethod hessian = HessianMethod::LeastSquares;
-  MetricOptions metric;               ///< p, hmin, hmax, anisotropy; targetVertices is set per cycle
+  MetricOptions metric;               ///< p, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
   double hgrad = 0;                   ///< > 1: gradation (gradation.hpp); ≤ 0: off
   mesher::MeshOptions mesh;
   fem::SolveOptions solve;
