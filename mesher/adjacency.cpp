@@ -102,4 +102,48 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
   return toCsr(rows);
 }
 
+AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
+                              std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
+  const int n = int(x.size());
+  const int nOld = old.size();
+  auto h1Of = [&](int i) {
+    const double a = m[i].m11(), b = m[i].m12(), c = m[i].m22();
+    const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    return 1.0 / std::sqrt(std::max(lmin, 1e-300));
+  };
+  // Survivors' rows, remapped (the map is increasing, so rows stay sorted).
+  std::vector<std::vector<int>> rows(n);
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nOld; ++i) {
+    const int ni = map.empty() ? i : map[i];
+    if (ni < 0) continue;
+    for (int j : old.neighbours(i)) {
+      const int nj = map.empty() ? j : map[j];
+      if (nj >= 0) rows[ni].push_back(nj);
+    }
+  }
+  if (firstNew < n) {
+    double hmax = 0;
+    for (int i = 0; i < n; ++i) hmax = std::max(hmax, h1Of(i));
+    Vec2 lo = x[0], hi = x[0];
+    for (const auto& p : x) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    BucketGrid grid(lo, hi, std::max(std::sqrt(std::max((hi - lo).prod(), 1e-300) / n), 1e-12 * (hi - lo).norm() + 1e-300),
+                    4L * n + 16);
+    grid.build(x);
+    const double R = radius * std::sqrt(2.0) * hmax;
+    for (int k = firstNew; k < n; ++k)
+      grid.forEach(x[k], R, [&](int j) {
+        if (j == k || !withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) return;
+        rows[k].push_back(j);
+        if (j < firstNew) rows[j].push_back(k);  // new ids exceed every survivor: still sorted
+      });
+#pragma omp parallel for schedule(static)
+    for (int k = firstNew; k < n; ++k) std::sort(rows[k].begin(), rows[k].end());
+  }
+  return toCsr(rows);
+}
+
 } // namespace ablmg::mesher

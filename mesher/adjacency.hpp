@@ -31,4 +31,12 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const M
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> positions,
                                 std::span<const Metric2> metrics, double radius, std::span<const char> moved = {});
 
+/// After population edits: `old` lists of the previous nodes, `map` old → new id (−1 =
+/// deleted; empty = identity), new bubbles are ids firstNew … positions.size()−1. Rows of
+/// survivors are remapped; each new bubble is searched in a bucket grid with the radius that
+/// bounds every partner (radius·√2·max h1), and linked both ways. Equal to a rebuild when the
+/// survivors have not moved since `old` was built. O(N) with a small constant.
+AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
+                              std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
+
 } // namespace ablmg::mesher

@@ -122,6 +122,10 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     const int done = step + 1;
     if (!populationSettled && done % popEvery == 0) {
       t = Clock::now();
+      adj = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
+      sys.clearMoved();
+      st.secondsAdjacency += since(t);
+      t = Clock::now();
       const PopulationChange c = adjustPopulation(sys, adj, geo, metric, pop);
       st.inserted += c.inserted;
       st.deleted += c.deleted;
@@ -129,7 +133,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       if (c.inserted + c.deleted > 0) {
         quietPasses = 0;
         t = Clock::now();
-        adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+        adj = patchAdjacency(adj, c.map, c.firstNew, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
         sys.clearMoved();
         st.secondsAdjacency += since(t);
         continue;

@@ -127,7 +127,8 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   for (int i = 0; i < n; ++i)  // wake the neighbourhood of every deletion
     if (kill[i])
       for (int j : adj.neighbours(i)) sys.kick(j);
-  if (change.deleted) sys.remove(kill);
+  if (change.deleted) change.map = sys.remove(kill);
+  change.firstNew = sys.size();
   if (!added.empty()) {
     std::vector<Vec2> pts;
     for (const auto& a : added) pts.push_back(a.first);

@@ -43,10 +43,13 @@ struct PopulationOptions {
 
 struct PopulationChange {
   long inserted = 0, deleted = 0;
+  std::vector<int> map;  ///< old id → new id (−1 = deleted); empty if nothing was deleted
+  int firstNew = 0;      ///< inserted bubbles are ids firstNew … size−1 (appended)
 };
 
 /// One pass over `sys` (adjacency `adj` must match its current nodes). Metrics of inserted
-/// nodes are evaluated (serially). After a change, the caller rebuilds the adjacency lists.
+/// nodes are evaluated (serially). After a change, the caller updates the adjacency lists
+/// (patchAdjacency with `map` and `firstNew`, or a rebuild).
 PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, const DomainGeometry& geo,
                                   const MetricField& metric, const PopulationOptions& options);
 

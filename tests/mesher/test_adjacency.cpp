@@ -85,3 +85,28 @@ TEST(Adjacency, IsSymmetricDetectsBrokenLists) {
   a.ids = {1, 0};
   EXPECT_TRUE(a.isSymmetric());
 }
+
+TEST(Adjacency, PatchAfterDeletionsAndInsertionsEqualsRebuild) {
+  Cloud c = randomCloud(1500, 11);
+  const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
+  // delete every 7th node, append 40 new ones
+  std::vector<int> map(c.x.size(), -1);
+  Cloud d;
+  for (int i = 0; i < int(c.x.size()); ++i)
+    if (i % 7 != 3) {
+      map[i] = int(d.x.size());
+      d.x.push_back(c.x[i]);
+      d.m.push_back(c.m[i]);
+    }
+  const int firstNew = int(d.x.size());
+  const Cloud extra = randomCloud(40, 12);
+  for (int k = 0; k < 40; ++k) {
+    d.x.push_back(extra.x[k]);
+    d.m.push_back(extra.m[k]);
+  }
+  const AdjacencyLists p = patchAdjacency(a, map, firstNew, d.x, d.m, 1.7);
+  const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
+  EXPECT_TRUE(p.isSymmetric());
+  EXPECT_EQ(p.offsets, b.offsets);
+  EXPECT_EQ(p.ids, b.ids);
+}
