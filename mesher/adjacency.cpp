@@ -2,6 +2,8 @@
 
 #include "core/bucket_grid.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -19,6 +21,34 @@ AdjacencyLists toCsr(std::vector<std::vector<int>>& rows) {
   return a;
 }
 
+/// CSR from a row function without per-row allocations: rows are produced in contiguous
+/// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
+/// does not depend on the thread count). rowFn(i, out) appends row i to out.
+template <class RowFn> AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
+  AdjacencyLists a;
+  a.offsets.assign(std::size_t(n) + 1, 0);
+  std::vector<std::vector<int>> buf(static_cast<std::size_t>(omp_get_max_threads()));
+  std::vector<int> blockLo(buf.size() + 1, n);
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
+    blockLo[t] = lo;
+    auto& out = buf[t];
+    for (int i = lo; i < hi; ++i) {
+      const std::size_t before = out.size();
+      rowFn(i, out);
+      a.offsets[i + 1] = int(out.size() - before);
+    }
+  }
+  for (int i = 0; i < n; ++i) a.offsets[i + 1] += a.offsets[i];
+  a.ids.resize(std::size_t(a.offsets[n]));
+#pragma omp parallel for schedule(static, 1)
+  for (int t = 0; t < int(buf.size()); ++t)
+    if (!buf[t].empty()) std::copy(buf[t].begin(), buf[t].end(), a.ids.begin() + a.offsets[blockLo[t]]);
+  return a;
+}
+
 } // namespace
 
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
@@ -32,29 +62,32 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
   const double area = std::max((hi - lo).prod(), 1e-300);
   BucketGrid grid(lo, hi, std::max(std::sqrt(area / n), 1e-12 * (hi - lo).norm() + 1e-300), 4L * n + 16);
   grid.build(x);
-  std::vector<std::vector<int>> found(n);
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
+  const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
     // h1 (largest semi-axis of the unit ellipse) = 1/sqrt(λ_min).
     const double a = m[i].m11(), b = m[i].m12(), c = m[i].m22();
     const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
     const double R = radius * std::sqrt(2.0) / std::sqrt(std::max(lmin, 1e-300));
+    const std::size_t start = out.size();
     grid.forEach(x[i], R, [&](int j) {
-      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) found[i].push_back(j);
+      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
     });
+    std::sort(out.begin() + std::ptrdiff_t(start), out.end());
+  });
+  // Transpose (counting sort: rows come out sorted), then merge each row with its transpose.
+  AdjacencyLists tr;
+  tr.offsets.assign(std::size_t(n) + 1, 0);
+  for (int j : found.ids) ++tr.offsets[j + 1];
+  for (int i = 0; i < n; ++i) tr.offsets[i + 1] += tr.offsets[i];
+  tr.ids.resize(found.ids.size());
+  {
+    std::vector<int> fill(tr.offsets.begin(), tr.offsets.end() - 1);
+    for (int i = 0; i < n; ++i)
+      for (int j : found.neighbours(i)) tr.ids[fill[j]++] = i;
   }
-  std::vector<std::vector<int>> rows(n);
-  for (int i = 0; i < n; ++i)
-    for (int j : found[i]) {
-      rows[i].push_back(j);
-      rows[j].push_back(i);
-    }
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    std::sort(rows[i].begin(), rows[i].end());
-    rows[i].erase(std::unique(rows[i].begin(), rows[i].end()), rows[i].end());
-  }
-  return toCsr(rows);
+  return blockedCsr(n, [&](int i, std::vector<int>& out) {
+    const auto f = found.neighbours(i), t = tr.neighbours(i);
+    std::set_union(f.begin(), f.end(), t.begin(), t.end(), std::back_inserter(out));
+  });
 }
 
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> x, std::span<const Metric2> m,
@@ -77,29 +110,24 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
       dirty[i] = char(d);
     }
   }
-  std::vector<std::vector<int>> rows(n);
-#pragma omp parallel
-  {
-    std::vector<int> cand;
-#pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      if (!dirty.empty() && !dirty[i]) {
-        const auto row = old.neighbours(i);
-        rows[i].assign(row.begin(), row.end());
-        continue;
-      }
-      cand.clear();
-      for (int j : old.neighbours(i)) {
-        cand.push_back(j);
-        for (int k : old.neighbours(j)) cand.push_back(k);
-      }
-      std::sort(cand.begin(), cand.end());
-      cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-      for (int j : cand)
-        if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) rows[i].push_back(j);
+  std::vector<std::vector<int>> scratch(static_cast<std::size_t>(omp_get_max_threads()));
+  return blockedCsr(n, [&](int i, std::vector<int>& out) {
+    if (!dirty.empty() && !dirty[i]) {
+      const auto row = old.neighbours(i);
+      out.insert(out.end(), row.begin(), row.end());
+      return;
     }
-  }
-  return toCsr(rows);
+    auto& cand = scratch[std::size_t(omp_get_thread_num())];
+    cand.clear();
+    for (int j : old.neighbours(i)) {
+      cand.push_back(j);
+      for (int k : old.neighbours(j)) cand.push_back(k);
+    }
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    for (int j : cand)
+      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
+  });
 }
 
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,

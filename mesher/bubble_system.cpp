@@ -189,7 +189,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     if (d2 > moveEps2_) {
       moved_[i] = 1;
       movedSinceRefresh_[i] = 1;
-      disp_[i] += std::sqrt(d2);
+      if (i < int(refPos_.size())) disp_[i] = std::sqrt(metrics_[i].squaredLength(nodes_.positions[i] - refPos_[i]));
     }
   }
 }
@@ -233,6 +233,7 @@ double BubbleSystem::maxTravelSinceRefresh() const {
 void BubbleSystem::clearMoved() {
   movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0);
   disp_.assign(std::size_t(nodes_.size()), 0.0);
+  refPos_ = nodes_.positions;
 }
 
 void BubbleSystem::wakeAll() { active_.assign(std::size_t(nodes_.size()), 1); }

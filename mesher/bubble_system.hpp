@@ -71,8 +71,8 @@ public:
   /// Bubbles that moved since the last clearMoved() (for a partial adjacency refresh).
   const std::vector<char>& movedSinceRefresh() const { return movedSinceRefresh_; }
   void clearMoved();
-  /// Largest metric path length travelled by a bubble since clearMoved(): the two-ring refresh
-  /// of the adjacency lists is exact while this stays below (radius − 1.5)/2.
+  /// Largest metric distance of a bubble from where it was at clearMoved(): the two-ring
+  /// refresh of the adjacency lists is exact while this stays below (radius − 1.5)/2.
   double maxTravelSinceRefresh() const;
 
   /// Population edits (§3.4). Removal keeps the relative order of the survivors; returns
@@ -96,6 +96,7 @@ private:
   std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
   std::vector<Vec2> vel_, force_;
   std::vector<double> res_, disp_;
+  std::vector<Vec2> refPos_;  ///< positions at the last clearMoved()
   std::vector<char> active_, moved_, movedSinceRefresh_, kicked_;
   double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
   std::vector<Metric2> metrics_;
