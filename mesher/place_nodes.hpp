@@ -4,8 +4,21 @@
 ///   initial placement (§3.1) → [ dynamics, eq. (5)–(8) (§3.2) ↔ population control, eq. (9)
 ///   (§3.4) ] with adjacency lists (§3.3) → stop rule → PlacementResult
 ///
+/// Schedule: population passes (population.hpp) every 10 steps, each after an adjacency
+/// refresh, until two passes in a row change nothing (or 60 % of maxSteps); the run stops when
+/// the residual < tolerance after that. Boundary nodes are placed once (equal metric length
+/// per piece between corners) and keep their count; only interior bubbles are inserted/deleted.
+///
+/// Measured (Domain::disk({0,0},10), the three §4.3 metrics, defaults, 1 thread): final count
+/// vs N* −1.8 % / −3.7 % / −1.1 %; interior nearest-neighbour metric distance in
+/// [0.85, 1.15] for 99.8 % / 98.0 % / 97.6 %; residual drop ×438 / ×808 / ×606 in 823 / 1277 /
+/// 860 steps; boundary edges of metric length 1.000–1.001 (tests/mesher/test_place_nodes.cpp).
+///
+/// Early stopping (issue 7): `tolerance` trades steps for packing quality: on the constant
+/// metric at 10⁵ nodes, 1e-3 takes ~980 steps, 1e-2 ~390 (bench/bench_place_nodes.cpp).
+///
 /// Deterministic: same domain, metric and options (seed) ⇒ bit-identical result, for any
-/// number of threads.
+/// number of threads (no floating reductions across threads; nothing random is drawn).
 #include "core/domain.hpp"
 #include "core/metric_field.hpp"
 #include "mesher/node_set.hpp"
@@ -37,7 +50,9 @@ struct PlacementOptions {
 };
 
 struct PlacementStats {
-  long predictedNodes = 0;    ///< N* = (2/√3) ∫ √det M dA (+ boundary correction), see place_nodes.cpp
+  /// N* = (2/√3) ∫ √det M dA + Nb/2 + 1 − holes (Nb boundary nodes): by Euler, a triangulation
+  /// with T unit equilateral triangles (area √3/4 each in the metric) has T = 2N − Nb − 2 + 2·holes.
+  long predictedNodes = 0;
   long initialNodes = 0, finalNodes = 0;
   long inserted = 0, deleted = 0;
   int steps = 0;
