@@ -1,0 +1,75 @@
+# CLI tests of `ablmg adapt` on bad inputs: exit non-zero with a one-line error naming the
+# problem, and no convergence.csv left behind. Included by tests/CMakeLists.txt; run as a
+# script (cmake -P) it performs one check.
+if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "success")
+  # A small good run: exit 0, the exact CSV header, one row per cycle, every output present.
+  file(REMOVE_RECURSE "${OUTDIR}")
+  separate_arguments(_args UNIX_COMMAND "${ARGS}")
+  execute_process(COMMAND "${BIN}" adapt ${_args} --out-dir "${OUTDIR}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "exit ${rc}\n${out}${err}")
+  endif()
+  file(STRINGS "${OUTDIR}/convergence.csv" _lines)
+  list(GET _lines 0 _header)
+  if(NOT _header MATCHES "^cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh(,|$)")
+    message(FATAL_ERROR "bad CSV header: ${_header}")
+  endif()
+  list(LENGTH _lines _n)
+  if(NOT _n EQUAL 3)
+    message(FATAL_ERROR "expected 2 cycle rows, got ${_n} lines")
+  endif()
+  foreach(f convergence.json convergence.png final_mesh.png cycle_0.vtu cycle_1.vtu)
+    if(NOT EXISTS "${OUTDIR}/${f}")
+      message(FATAL_ERROR "missing ${OUTDIR}/${f}")
+    endif()
+  endforeach()
+  if(NOT out MATCHES "Cycle 1: N=[0-9]+ T=[0-9]+ L2=")
+    message(FATAL_ERROR "no cycle line in the output:\n${out}")
+  endif()
+  return()
+endif()
+if(CMAKE_SCRIPT_MODE_FILE)
+  file(REMOVE_RECURSE "${OUTDIR}")
+  separate_arguments(_args UNIX_COMMAND "${ARGS}")
+  execute_process(COMMAND "${BIN}" adapt ${_args} --out-dir "${OUTDIR}" RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "expected failure, got exit 0\n${out}${err}")
+  endif()
+  if(NOT err MATCHES "${EXPECT}")
+    message(FATAL_ERROR "stderr does not match '${EXPECT}':\n${err}")
+  endif()
+  if(EXISTS "${OUTDIR}/convergence.csv")
+    message(FATAL_ERROR "a failed run left ${OUTDIR}/convergence.csv")
+  endif()
+  return()
+endif()
+
+set(_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_adapt)
+file(MAKE_DIRECTORY ${_dir})
+foreach(case
+    "no_problem|--target-vertices 100|--problem NAME is required"
+    "no_targets|--problem wavefront|--target-vertices N1,N2,... is required"
+    "unknown_problem|--problem wavefrnt --target-vertices 500|unknown problem 'wavefrnt'"
+    "unknown_param|--problem wavefront --param beta=1 --target-vertices 500|unknown parameter 'beta'"
+    "bad_param|--problem wavefront --param alpha --target-vertices 500|--param expects KEY=VALUE"
+    "bad_number|--problem wavefront --target-vertices 500,abc|expected a number, got 'abc'"
+    "small_target|--problem wavefront --target-vertices 500,3|must be >= 10 \\(got 3\\)"
+    "bad_p|--problem wavefront --target-vertices 500 --p 0.5|p must be >= 1"
+    "bad_hgrad|--problem wavefront --target-vertices 500 --hgrad 0.9|hgrad must be > 1"
+    "bad_hessian|--problem wavefront --target-vertices 500 --hessian cubic|unknown Hessian recovery method 'cubic'"
+    "unknown_flag|--problem wavefront --target-vertices 500 --frobnicate 1|unknown argument '--frobnicate'")
+  string(REPLACE "|" ";" _parts "${case}")
+  list(GET _parts 0 _name)
+  list(GET _parts 1 _args)
+  list(GET _parts 2 _expect)
+  add_test(NAME cli_adapt_${_name}
+           COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> "-DARGS=${_args}" "-DEXPECT=${_expect}"
+                   -DOUTDIR=${_dir}/${_name} -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_adapt_${_name} PROPERTIES LABELS cli)
+endforeach()
+
+add_test(NAME cli_adapt_success
+         COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=success
+                 "-DARGS=--problem wavefront --target-vertices 300,600" -DOUTDIR=${_dir}/success
+                 -P ${CMAKE_CURRENT_LIST_FILE})
+set_tests_properties(cli_adapt_success PROPERTIES LABELS cli)

@@ -1,0 +1,285 @@
+// ablmg adapt: the adaptive solve loop (issue 11) on a library problem, with reports.
+//
+//   ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
+//               [--p 2|1|inf] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
+//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
+//               [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+//
+// NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
+// of its parameters. Cycle k targets N_k vertices (the last N repeats when K exceeds the list).
+// --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
+//
+// Writes DIR/convergence.csv (the header kCsvHeader, more columns after it, one row per
+// cycle), DIR/convergence.json (options, rows, fitted rates), DIR/cycle_K.vtu (mesh, u_h,
+// exact u, nodal error, the metric the mesh was built for, per-element errors),
+// DIR/convergence.png (errors vs N, log-log, slopes −1/2 and −1, and uniform structured meshes
+// of the same N when --uniform on) and DIR/final_mesh.png; with --medit on also
+// DIR/cycle_K.mesh and DIR/cycle_K_metric.sol (the metric computed on mesh K for mesh K+1,
+// tensor m11 m12 m22). Prints the resolved options, one `Cycle k:` line per cycle, the rates.
+#include "adapt/adaptive_loop.hpp"
+#include "adapt/convergence.hpp"
+#include "cli/command.hpp"
+#include "core/error.hpp"
+#include "fem/structured_mesh.hpp"
+#include "io/atomic_file.hpp"
+#include "io/medit.hpp"
+#include "io/picture.hpp"
+#include "io/vtu.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace ablmg::cli {
+namespace {
+
+constexpr const char* kCsvHeader =
+    "cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh";
+
+double parseNumber(const std::string& text, const std::string& where) {
+  if (text == "inf" || text == "infinity") return std::numeric_limits<double>::infinity();
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  ABLMG_REQUIRE(used == text.size() && !text.empty(), where << ": expected a number, got '" << text << "'");
+  return v;
+}
+
+bool parseOnOff(const std::string& text, const std::string& where) {
+  if (text == "on" || text == "true" || text == "1") return true;
+  if (text == "off" || text == "false" || text == "0") return false;
+  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
+  return false;
+}
+
+struct Args {
+  std::string problem;
+  std::map<std::string, double> params;
+  adapt::AdaptOptions options;
+  std::string outDir = "adapt_out";
+  bool uniform = true, vtu = true, medit = false;
+};
+
+Args parseArgs(const std::vector<std::string>& args) {
+  Args a;
+  bool haveTargets = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& key = args[i];
+    auto value = [&]() -> const std::string& {
+      ABLMG_REQUIRE(i + 1 < args.size(), "adapt: " << key << " needs a value");
+      return args[++i];
+    };
+    if (key == "--problem") {
+      a.problem = value();
+    } else if (key == "--param") {
+      const std::string kv = value();
+      const auto eq = kv.find('=');
+      ABLMG_REQUIRE(eq != std::string::npos && eq > 0, "adapt: --param expects KEY=VALUE, got '" << kv << "'");
+      a.params[kv.substr(0, eq)] = parseNumber(kv.substr(eq + 1), "adapt: --param " + kv.substr(0, eq));
+    } else if (key == "--cycles") {
+      const double c = parseNumber(value(), "adapt: --cycles");
+      ABLMG_REQUIRE(c >= 1 && c <= 1000 && c == std::floor(c), "adapt: --cycles must be an integer in 1..1000, got " << c);
+      a.options.cycles = int(c);
+    } else if (key == "--target-vertices") {
+      a.options.targetVertices.clear();
+      std::stringstream ss(value());
+      std::string item;
+      while (std::getline(ss, item, ',')) a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
+      haveTargets = true;
+    } else if (key == "--p") {
+      a.options.metric.p = parseNumber(value(), "adapt: --p");
+    } else if (key == "--hgrad") {
+      a.options.hgrad = parseNumber(value(), "adapt: --hgrad");
+    } else if (key == "--hessian") {
+      a.options.hessian = adapt::parseHessianMethod(value());
+    } else if (key == "--hmin") {
+      a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
+    } else if (key == "--hmax") {
+      a.options.metric.hmax = parseNumber(value(), "adapt: --hmax");
+    } else if (key == "--max-aniso") {
+      a.options.metric.maxAnisotropy = parseNumber(value(), "adapt: --max-aniso");
+    } else if (key == "--seed") {
+      a.options.mesh.placement.seed = std::uint64_t(parseNumber(value(), "adapt: --seed"));
+    } else if (key == "--uniform") {
+      a.uniform = parseOnOff(value(), "adapt: --uniform");
+    } else if (key == "--vtu") {
+      a.vtu = parseOnOff(value(), "adapt: --vtu");
+    } else if (key == "--stop-l2") {
+      a.options.stopL2 = parseNumber(value(), "adapt: --stop-l2");
+    } else if (key == "--stop-h1") {
+      a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
+    } else if (key == "--medit") {
+      a.medit = parseOnOff(value(), "adapt: --medit");
+    } else if (key == "--out-dir") {
+      a.outDir = value();
+    } else {
+      ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
+                                                       << "' (valid: --problem --param --cycles --target-vertices --p --hgrad "
+                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --uniform --vtu --medit --out-dir)");
+    }
+  }
+  ABLMG_REQUIRE(!a.problem.empty(), "adapt: --problem NAME is required");
+  ABLMG_REQUIRE(haveTargets, "adapt: --target-vertices N1,N2,... is required");
+  adapt::validate(a.options);
+  return a;
+}
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+/// P1 errors on a structured mesh of the problem's domain with about `n` vertices.
+struct UniformPoint {
+  double vertices, l2, h1;
+};
+UniformPoint uniformRun(const fem::TestProblem& p, double n) {
+  const auto [lo, hi] = p.domain.boundingBox();
+  const double boxArea = (hi - lo).prod(), fill = p.domain.area() / boxArea;
+  const int cells = std::max(2, int(std::lround(std::sqrt(n / fill))) - 1);
+  Mesh2 mesh;
+  try {
+    mesh = fem::structuredMesh(p.domain, cells, cells);
+  } catch (const InputError&) {  // corners off the grid: the smallest even multiple that fits
+    mesh = fem::structuredMesh(p.domain, 2 * ((cells + 1) / 2), 2 * ((cells + 1) / 2));
+  }
+  const auto sol = fem::solvePoisson(mesh, p.poisson());
+  const auto err = fem::computeErrors(mesh, sol.u, p.exact());
+  return {double(mesh.numVertices()), err.l2, err.h1};
+}
+
+int runAdapt(const std::vector<std::string>& argv) {
+  Args a = parseArgs(argv);
+  const fem::TestProblem problem = fem::makeProblem(a.problem, a.params);
+  namespace fs = std::filesystem;
+  fs::create_directories(a.outDir);
+
+  // 1. Resolved options.
+  std::cout << "ablmg adapt: problem " << problem.name << ": u = " << problem.formula << "\n  params:";
+  for (const auto& [k, v] : problem.params) std::cout << " " << k << "=" << v;
+  std::cout << "\n  cycles " << (a.options.cycles > 0 ? a.options.cycles : int(a.options.targetVertices.size()))
+            << ", target vertices";
+  for (double n : a.options.targetVertices) std::cout << " " << n;
+  std::cout << "\n  hessian " << adapt::toString(a.options.hessian) << ", p " << a.options.metric.p << ", hmin "
+            << a.options.metric.hmin << ", hmax " << a.options.metric.hmax << ", max anisotropy "
+            << a.options.metric.maxAnisotropy << ", hgrad " << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off")
+            << ", seed " << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
+
+  // 2. The loop; each cycle prints its line and writes its .vtu.
+  Mesh2 finalMesh;
+  const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem, a.options, [&](const adapt::CycleData& c) {
+    const auto& r = c.report;
+    std::printf("Cycle %d: N=%ld T=%ld L2=%.3e H1=%.3e L2interp=%.3e q=%.3f/%.3f  t: solve %.2fs recover "
+                "%.2fs metric %.2fs mesh %.2fs\n",
+                r.cycle, r.vertices, r.triangles, r.l2, r.h1, r.l2Interp, r.qMean, r.qMin, r.tSolve, r.tRecover, r.tMetric,
+                r.tMesh);
+    std::fflush(stdout);
+    if (a.vtu) {
+      const int n = c.mesh.numVertices();
+      io::Field uh{"u", 1, std::vector<double>(c.u.data(), c.u.data() + n)}, ue{"u_exact", 1, {}}, err{"error", 1, {}};
+      for (int v = 0; v < n; ++v) {
+        ue.values.push_back(problem.u(c.mesh.vertices[v].x(), c.mesh.vertices[v].y()));
+        err.values.push_back(ue.values.back() - uh.values[v]);
+      }
+      std::vector<io::Field> points{uh, ue, err};
+      for (auto& f : io::metricFields(c.meshMetric)) points.push_back(std::move(f));
+      std::vector<io::Field> cells{{"l2_error", 1, c.errors.elementL2}, {"h1_error", 1, c.errors.elementH1}};
+      io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points, cells);
+    }
+    if (a.medit) {  // the mesh and the metric computed on it for the next cycle, as MMG/FreeFem++ read them
+      const std::string stem = (fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle))).string();
+      io::writeMesh(stem + ".mesh", c.mesh);
+      if (!c.nextMetric.empty()) io::writeSol(stem + "_metric.sol", c.nextMetric);
+    }
+    if (c.nextMetric.empty()) finalMesh = c.mesh;
+  });
+
+  // 3. Rates and the error check.
+  std::printf("Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
+              report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
+  std::printf("Errors decrease from the first to the last cycle: %s\n", report.errorsDecrease ? "yes" : "NO");
+  if (report.stoppedEarly) std::printf("Stopped after cycle %d: error target reached\n", report.cycles.back().cycle);
+
+  // 4. Reports: CSV, JSON.
+  io::writeFileAtomically((fs::path(a.outDir) / "convergence.csv").string(), [&](std::ostream& os) {
+    os << kCsvHeader << ",target_vertices,max_vertex_error,predicted_vertices\n";
+    os.precision(10);
+    for (const auto& r : report.cycles)
+      os << r.cycle << ',' << r.vertices << ',' << r.triangles << ',' << r.l2 << ',' << r.h1 << ',' << r.l2Interp << ','
+         << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh << ','
+         << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << '\n';
+  });
+  nlohmann::json j;
+  j["problem"] = problem.name;
+  j["formula"] = problem.formula;
+  j["params"] = problem.params;
+  j["options"] = {{"target_vertices", a.options.targetVertices},
+                  {"cycles", int(report.cycles.size())},
+                  {"hessian", adapt::toString(a.options.hessian)},
+                  {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
+                  {"hmin", a.options.metric.hmin},
+                  {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
+                  {"max_anisotropy", a.options.metric.maxAnisotropy},
+                  {"hgrad", a.options.hgrad},
+                  {"seed", a.options.mesh.placement.seed}};
+  for (const auto& r : report.cycles)
+    j["cycles"].push_back({{"cycle", r.cycle},        {"vertices", r.vertices},   {"triangles", r.triangles},
+                           {"target_vertices", r.targetVertices}, {"l2_error", r.l2}, {"h1_error", r.h1},
+                           {"l2_interp_error", r.l2Interp}, {"max_vertex_error", r.maxVertex}, {"q_mean", r.qMean},
+                           {"q_min", r.qMin},          {"t_solve", r.tSolve},     {"t_recover", r.tRecover},
+                           {"t_metric", r.tMetric},    {"t_mesh", r.tMesh}});
+  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+  j["rates"] = {{"window", report.rateWindow}, {"l2", num(report.l2Rate)}, {"h1", num(report.h1Rate)},
+                {"l2_interp", num(report.l2InterpRate)}};
+  j["errors_decrease"] = report.errorsDecrease;
+  j["stopped_early"] = report.stoppedEarly;
+
+  // 5. Uniform refinement on the same axes, and the pictures.
+  std::vector<io::Curve> curves(3);
+  curves[0].name = "adaptive L2";
+  curves[1].name = "adaptive H1";
+  curves[2].name = "adaptive L2 interpolant";
+  for (const auto& r : report.cycles) {
+    for (auto& c : curves) c.x.push_back(double(r.vertices));
+    curves[0].y.push_back(r.l2);
+    curves[1].y.push_back(r.h1);
+    curves[2].y.push_back(r.l2Interp);
+  }
+  if (a.uniform) {
+    io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
+    for (const auto& r : report.cycles) {
+      if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5) continue;
+      const auto u = uniformRun(problem, r.targetVertices);
+      ul.x.push_back(u.vertices);
+      ul.y.push_back(u.l2);
+      uh.x.push_back(u.vertices);
+      uh.y.push_back(u.h1);
+      j["uniform"].push_back({{"vertices", u.vertices}, {"l2_error", u.l2}, {"h1_error", u.h1}});
+      std::printf("Uniform: N=%.0f L2=%.3e H1=%.3e\n", u.vertices, u.l2, u.h1);
+    }
+    curves.push_back(ul);
+    curves.push_back(uh);
+  }
+  io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(), [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+  io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
+                     "ablmg adapt: " + problem.name);
+  io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh);
+  std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json, convergence.png, final_mesh.png"
+            << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
+  return 0;
+}
+
+} // namespace
+
+ABLMG_COMMAND("adapt", "adaptive solve loop on a library problem: solve, recover, metric, remesh", runAdapt)
+
+} // namespace ablmg::cli
