@@ -1,6 +1,6 @@
 // Mirrors adapt/adaptive_loop.hpp: a small wave-front loop (≈ 500 → 4000 vertices, 4 cycles)
 // through the real mesher: every mesh valid, errors fall, rates near the optimal P1 rates
-// (L2 −1, H1 −1/2), vertex counts follow the schedule; the metric quality helper.
+// (L2 −1, H1 −1/2), vertex counts follow the schedule.
 #include "adapt/adaptive_loop.hpp"
 #include "adapt/convergence.hpp"
 #include "core/error.hpp"
@@ -46,20 +46,6 @@ TEST(AdaptiveLoop, WaveFrontErrorsFallAtOptimalRates) {
   EXPECT_NEAR(l2Rate, -1.0, 0.35);
   EXPECT_NEAR(h1Rate, -0.5, 0.2);
 
-}
-
-TEST(AdaptiveLoop, MetricQualityOfEquilateralMeshIsOne) {
-  Mesh2 m;
-  m.vertices = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2)};
-  m.triangles = {{0, 1, 2}};
-  std::vector<Metric2> metric(3, Metric2::isotropic(1.0));
-  EXPECT_NEAR(metricQuality(m, metric).mean, 1.0, 1e-12);
-  // Stretched by 10 in x, the same triangle is poor in that metric's sense... unless the
-  // metric stretches identically: x → 10x with M = diag(1/100, 1).
-  for (auto& v : m.vertices) v.x() *= 10;
-  EXPECT_LT(metricQuality(m, metric).mean, 0.3);
-  std::vector<Metric2> stretched(3, Metric2::fromSizes(10, 1, 0));
-  EXPECT_NEAR(metricQuality(m, stretched).mean, 1.0, 1e-12);
 }
 
 TEST(AdaptiveLoop, RejectsBadOptions) {

@@ -1,0 +1,66 @@
+// The mesher-free steps of adapt/adaptive_loop.hpp: adaptMetric() (recover → metric →
+// gradation at a target complexity) and metricQuality().
+#include "adapt/adaptive_loop.hpp"
+#include "adapt/gradation.hpp"
+#include "core/error.hpp"
+#include "fem/error_norms.hpp"
+#include "fem/structured_mesh.hpp"
+
+#include <gtest/gtest.h>
+#include <cmath>
+
+using namespace ablmg;
+using namespace ablmg::adapt;
+
+namespace {
+std::vector<double> waveFront(const Mesh2& mesh) {
+  const Eigen::VectorXd u = fem::interpolate(mesh, fem::makeProblem("wavefront").u);
+  return {u.data(), u.data() + u.size()};
+}
+} // namespace
+
+TEST(AdaptMetric, HitsTargetComplexityWithAndWithoutGradation) {
+  const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);
+  const auto u = waveFront(mesh);
+  for (double hgrad : {0.0, 1.3}) {
+    AdaptOptions o;
+    o.hgrad = hgrad;
+    double tr = -1, tm = -1;
+    GradationStats gs;
+    const auto m = adaptMetric(mesh, u, 8000, o, &tr, &tm, &gs);
+    ASSERT_EQ(int(m.size()), mesh.numVertices());
+    EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(8000), 1.0, 0.01) << "hgrad " << hgrad;
+    EXPECT_GE(tr, 0);
+    EXPECT_GE(tm, 0);
+    if (hgrad > 1) {
+      EXPECT_TRUE(gs.converged);
+      EXPECT_GT(gs.corrections, 0);
+    }
+    // hmax = ∞ becomes a quarter of the diagonal √2.
+    for (const auto& x : m) EXPECT_LE(x.eigen().h1, 0.25 * std::sqrt(2.0) * (1 + 1e-9));
+    // Refined at the front (r = 0.7 around (−0.05, −0.05)), coarse away from it.
+    double hFront = 1, hFar = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      const double r = (mesh.vertices[v] + Vec2(0.05, 0.05)).norm();
+      if (std::abs(r - 0.7) < 0.01) hFront = std::min(hFront, m[v].eigen().h2);
+      if (r > 1.2) hFar = std::max(hFar, m[v].eigen().h2);
+    }
+    EXPECT_GT(hFar, 5 * hFront) << "hgrad " << hgrad;
+  }
+}
+
+TEST(AdaptMetric, MetricQualityOfEquilateralMeshIsOne) {
+  Mesh2 m;
+  m.vertices = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, std::sqrt(3.0) / 2)};
+  m.triangles = {{0, 1, 2}};
+  std::vector<Metric2> metric(3, Metric2::isotropic(1.0));
+  EXPECT_NEAR(metricQuality(m, metric).mean, 1.0, 1e-12);
+  EXPECT_NEAR(metricQuality(m, metric).min, 1.0, 1e-12);
+  // Stretched ×10 along x: poor in the identity metric, perfect in the metric stretched alike.
+  for (auto& v : m.vertices) v.x() *= 10;
+  EXPECT_LT(metricQuality(m, metric).mean, 0.3);
+  std::vector<Metric2> stretched(3, Metric2::fromSizes(10, 1, 0));
+  EXPECT_NEAR(metricQuality(m, stretched).mean, 1.0, 1e-12);
+  metric.pop_back();
+  EXPECT_THROW(metricQuality(m, metric), InputError);
+}
