@@ -199,9 +199,9 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
     }
   };
 
-  constexpr int kBlock = 65536;  // few barriers: cheap even when the cores are shared
+  constexpr int kBlock = 16384;  // block data stay in cache for the serial scatter
   std::vector<ElementData> block(std::min(nt, kBlock));
-  const bool parallel = problem.threadSafeFunctions && nt >= kBlock;
+  const bool parallel = problem.threadSafeFunctions && nt >= 2 * kBlock;
   double* values = sys.A.valuePtr();
   for (int t0 = 0; t0 < nt; t0 += kBlock) {
     const int t1 = std::min(nt, t0 + kBlock);

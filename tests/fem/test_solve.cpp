@@ -121,7 +121,7 @@ TEST(Solve, PieceWithoutDirichletVertexIsAnInputError) {
 }
 
 TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
-  const Mesh2 m = unitSquareMesh(260, 0.2, 8);  // > 2 blocks of 65536 triangles
+  const Mesh2 m = unitSquareMesh(260, 0.2, 8);  // > 2 blocks of 16384 triangles
   PoissonProblem p = makeProblem("wavefront").poisson();
   p.threadSafeFunctions = true;
   const LinearSystem a = assemble(m, p);
