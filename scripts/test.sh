@@ -16,6 +16,7 @@ if [ "${ABLMG_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DABLMG_SANITIZE=ON -DABLMG_BUILD_BENCH=OFF
   cmake --build build-asan -j"$jobs" --target test_core test_io test_mesher test_fem test_adapt 2>/dev/null ||
     cmake --build build-asan -j"$jobs"
+  export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
   ctest --test-dir build-asan --output-on-failure -j"$jobs" --timeout 900 -L "core|io|mesher|fem|adapt"
 fi
 if [ "${ABLMG_SKIP_FUZZ:-0}" != "1" ]; then
