@@ -31,7 +31,8 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
   result.stats.secondsValidate = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   result.mesh = std::move(connected.mesh);
-  result.metric = std::move(placement.metrics);
+  result.metric.reserve(connected.nodeOfVertex.size());
+  for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
   return result;
 }
 

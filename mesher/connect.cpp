@@ -1,0 +1,341 @@
+#include "mesher/connect.hpp"
+
+#include "core/error.hpp"
+#include "core/predicates.hpp"
+#include "mesher/triangulation.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+namespace ablmg::mesher {
+
+bool swapCriterion(const Vec2& x, const Vec2& z, const Vec2& y, const Vec2& w, const Metric2& m) {
+  // α at y (vectors a = x − y, b = z − y), β at w (c = z − w, d = x − w); the cross products
+  // are taken unsigned since y, w lie on either side of x–z. sin(α+β) < 0 ⇔ α+β > π.
+  const Vec2 a = x - y, b = z - y, c = z - w, d = x - w;
+  const double sa = std::abs(cross(a, b)), sb = std::abs(cross(c, d));
+  const double value = sa * m.dot(c, d) + sb * m.dot(a, b);  // eq. (12)
+  const double scale = sa * std::sqrt(m.squaredLength(c) * m.squaredLength(d)) +
+                       sb * std::sqrt(m.squaredLength(a) * m.squaredLength(b));
+  if (value < -1e-12 * scale) return true;
+  if (value > 1e-12 * scale) return false;
+  // Four nodes on one ellipse: the diagonal with the node of smallest abscissa goes.
+  const auto less = [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); };
+  const Vec2& xzMin = less(x, z) ? x : z;
+  const Vec2& ywMin = less(y, w) ? y : w;
+  return less(xzMin, ywMin);
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+bool properCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
+  return orient2d(p, q, r) * orient2d(p, q, s) < 0 && orient2d(r, s, p) * orient2d(r, s, q) < 0;
+}
+
+/// Boundary edges in a uniform grid, to test links against them.
+class BoundaryGrid {
+public:
+  BoundaryGrid(std::span<const Vec2> pos, std::span<const BoundaryEdge> edges) : pos_(pos), edges_(edges) {
+    lo_ = hi_ = pos[edges[0].a];
+    for (const auto& e : edges) {
+      lo_ = lo_.cwiseMin(pos[e.a]).cwiseMin(pos[e.b]);
+      hi_ = hi_.cwiseMax(pos[e.a]).cwiseMax(pos[e.b]);
+    }
+    const Vec2 ext = (hi_ - lo_).cwiseMax(Vec2(1e-300, 1e-300));
+    double total = 0;
+    for (const auto& e : edges) total += (pos[e.b] - pos[e.a]).norm();
+    cell_ = std::max(total / double(edges.size()), std::sqrt(ext.x() * ext.y() / 4e6));
+    nx_ = std::min(2048, int(ext.x() / cell_) + 1);
+    ny_ = std::min(2048, int(ext.y() / cell_) + 1);
+    offsets_.assign(std::size_t(nx_) * ny_ + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<int> fill;
+      if (pass == 1) {
+        for (std::size_t c = 1; c < offsets_.size(); ++c) offsets_[c] += offsets_[c - 1];
+        ids_.resize(offsets_.back());
+        fill.assign(offsets_.begin(), offsets_.end() - 1);
+      }
+      for (int i = 0; i < int(edges.size()); ++i) {
+        forCells(pos[edges[i].a], pos[edges[i].b], [&](std::size_t c) {
+          if (pass == 0) ++offsets_[c + 1]; else ids_[fill[c]++] = i;
+          return false;
+        });
+      }
+    }
+  }
+
+  /// Does segment p–q (link between nodes i and j) meet a boundary edge not incident to i or j?
+  bool crosses(int i, int j) const {
+    const Vec2 &p = pos_[i], &q = pos_[j];
+    return forCells(p, q, [&](std::size_t c) {
+      for (int k = offsets_[c]; k < offsets_[c + 1]; ++k) {
+        const auto& e = edges_[ids_[k]];
+        if (e.a == i || e.a == j || e.b == i || e.b == j) continue;
+        if (segmentsIntersect(p, q, pos_[e.a], pos_[e.b])) return true;
+      }
+      return false;
+    });
+  }
+
+private:
+  std::span<const Vec2> pos_;
+  std::span<const BoundaryEdge> edges_;
+  Vec2 lo_, hi_;
+  double cell_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> offsets_, ids_;
+
+  template <class F> bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
+    const auto cx = [&](double x) { return std::clamp(int((x - lo_.x()) / cell_), 0, nx_ - 1); };
+    const auto cy = [&](double y) { return std::clamp(int((y - lo_.y()) / cell_), 0, ny_ - 1); };
+    const int x0 = cx(std::min(p.x(), q.x())), x1 = cx(std::max(p.x(), q.x()));
+    const int y0 = cy(std::min(p.y(), q.y())), y1 = cy(std::max(p.y(), q.y()));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        if (f(std::size_t(y) * nx_ + x)) return true;
+    return false;
+  }
+};
+
+/// The candidate links and their state during the deletions of step 2.
+struct Links {
+  std::vector<int> offsets{0}, ids;  ///< CSR rows sorted by id (symmetric)
+  std::vector<int> ccw;              ///< per row: positions within the row in counter-clockwise order
+  std::vector<std::uint8_t> alive;
+
+  int find(int i, int j) const {
+    const auto b = ids.begin() + offsets[i], e = ids.begin() + offsets[i + 1];
+    const auto it = std::lower_bound(b, e, j);
+    return (it != e && *it == j) ? int(it - ids.begin()) : -1;
+  }
+  bool linked(int i, int j) const {
+    const int e = find(i, j);
+    return e >= 0 && alive[e];
+  }
+  /// Live neighbours of i in counter-clockwise order.
+  void liveRing(int i, std::vector<int>& out) const {
+    out.clear();
+    for (int k = offsets[i]; k < offsets[i + 1]; ++k) {
+      const int e = offsets[i] + ccw[k];
+      if (alive[e]) out.push_back(ids[e]);
+    }
+  }
+};
+
+/// Angle order of the vectors around a node: half-plane first, then cross product.
+bool ccwLess(const Vec2& u, const Vec2& v) {
+  const bool hu = u.y() > 0 || (u.y() == 0 && u.x() > 0), hv = v.y() > 0 || (v.y() == 0 && v.x() > 0);
+  if (hu != hv) return hu;
+  const double c = cross(u, v);
+  if (c != 0) return c > 0;
+  return u.squaredNorm() < v.squaredNorm();
+}
+
+} // namespace
+
+ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
+  (void)domain;  // the boundary is the polygon through placement.boundaryEdges
+  const auto& pos = placement.nodes.positions;
+  const auto& met = placement.metrics;
+  const int n = int(pos.size());
+  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n,
+                "connect: placement has inconsistent sizes");
+  ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  ConnectResult result;
+  ConnectStats& st = result.stats;
+
+  // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
+  auto t0 = Clock::now();
+  Triangulation tri(pos);
+  std::vector<std::array<int, 2>> boundary;
+  boundary.reserve(placement.boundaryEdges.size());
+  for (const auto& e : placement.boundaryEdges) {
+    if (!tri.recoverEdge(e.a, e.b)) {
+      throw Error("connect: boundary edge between nodes " + std::to_string(e.a) + " and " + std::to_string(e.b) +
+                  " cannot be made a mesh edge (another node lies on it)");
+    }
+    boundary.push_back({e.a, e.b});
+  }
+  tri.classify(boundary);
+  std::vector<char> used(n, 0);
+  for (int t = 0; t < tri.numTriangleSlots(); ++t)
+    if (tri.inside(t))
+      for (int v : tri.triangle(t)) used[v] = 1;
+  st.secondsRepair += since(t0);
+
+  // 1. Links: adjacency pairs inside the domain.
+  t0 = Clock::now();
+  std::vector<int> prevB(n, -1), nextB(n, -1);
+  for (const auto& e : placement.boundaryEdges) { nextB[e.a] = e.b; prevB[e.b] = e.a; }
+  const BoundaryGrid grid(pos, placement.boundaryEdges);
+  const auto inSector = [&](int b, int q) {  // direction b→q inside the domain's angle at boundary node b
+    if (q == nextB[b] || q == prevB[b]) return true;
+    const Vec2 &P = pos[prevB[b]], &B = pos[b], &N = pos[nextB[b]];
+    const bool left1 = orient2d(B, N, pos[q]) > 0, left2 = orient2d(P, B, pos[q]) > 0;
+    const int turn = orient2d(P, B, N);
+    return turn > 0 ? (left1 && left2) : turn < 0 ? (left1 || left2) : left1;
+  };
+  const auto& adj = placement.adjacency;
+  Links links;
+  links.offsets.assign(n + 1, 0);
+  std::vector<std::vector<int>> rowsOf(n);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    for (int j : adj.neighbours(i)) {
+      if (!used[j]) continue;
+      const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
+      if (!boundaryLink) {
+        if (nextB[i] >= 0 && !inSector(i, j)) continue;
+        if (nextB[j] >= 0 && !inSector(j, i)) continue;
+        if (grid.crosses(i, j)) continue;
+      }
+      rowsOf[i].push_back(j);
+    }
+  }
+  // Boundary edges are links even if the adjacency radius missed them.
+  for (const auto& e : placement.boundaryEdges) {
+    for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
+      if (std::find(rowsOf[i].begin(), rowsOf[i].end(), j) == rowsOf[i].end()) rowsOf[i].push_back(j);
+  }
+  for (int i = 0; i < n; ++i) {
+    std::sort(rowsOf[i].begin(), rowsOf[i].end());
+    links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
+  }
+  links.ids.resize(links.offsets[n]);
+  links.ccw.resize(links.offsets[n]);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    std::copy(rowsOf[i].begin(), rowsOf[i].end(), links.ids.begin() + links.offsets[i]);
+    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
+    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
+    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m, [&](int x, int y) {
+      return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]);
+    });
+  }
+  rowsOf = {};
+  links.alive.assign(links.ids.size(), 1);
+  st.links = long(links.ids.size() / 2);
+
+  // 2. Deleting non-satellite nodes (eq. 12), in rounds until nothing changes.
+  std::vector<std::uint8_t> kill(links.ids.size(), 0);
+  const auto markDead = [&](int i, int j) {
+    std::atomic_ref<std::uint8_t>(kill[links.find(i, j)]).store(1, std::memory_order_relaxed);
+    std::atomic_ref<std::uint8_t>(kill[links.find(j, i)]).store(1, std::memory_order_relaxed);
+  };
+  for (int round = 0; round < 50; ++round) {
+    long tests = 0, crossings = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : tests, crossings)
+    {
+      std::vector<int> ring;
+#pragma omp for schedule(dynamic, 256)
+      for (int p = 0; p < n; ++p) {
+        links.liveRing(p, ring);
+        const int m = int(ring.size());
+        if (m < 3) continue;
+        for (int j = 0; j < m; ++j) {
+          const int y = ring[(j + m - 1) % m], z = ring[j], w = ring[(j + 1) % m];
+          if (y == w || !links.linked(y, w)) continue;
+          ++tests;
+          if (!properCross(pos[p], pos[z], pos[y], pos[w])) continue;
+          ++crossings;
+          const Metric2 mAvg = 0.25 * (met[p] + met[z] + met[y] + met[w]);
+          if (swapCriterion(pos[p], pos[z], pos[y], pos[w], mAvg)) markDead(p, z); else markDead(y, w);
+        }
+      }
+    }
+    st.intersectionTests += tests;
+    st.crossingsFound += crossings;
+    long deleted = 0;
+    for (std::size_t e = 0; e < kill.size(); ++e)
+      if (kill[e] && links.alive[e]) { links.alive[e] = 0; ++deleted; }
+    st.deletedEdges += deleted / 2;
+    st.deletionRounds = round + 1;
+    if (deleted == 0) break;
+  }
+
+  // 3. Consistent triangles: (p, s, t) with s, t consecutive in p's ring, listed once (p the
+  //    smallest id), present in the rings of s and t as well.
+  std::vector<std::vector<std::array<int, 3>>> perThread(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<int> ring, other;
+    auto& out = perThread[omp_get_thread_num()];
+    const auto follows = [&](int c, int a, int b) {  // in c's ring, b comes right after a
+      links.liveRing(c, other);
+      const int m = int(other.size());
+      for (int k = 0; k < m; ++k)
+        if (other[k] == a) return other[(k + 1) % m] == b;
+      return false;
+    };
+#pragma omp for schedule(static)
+    for (int p = 0; p < n; ++p) {
+      links.liveRing(p, ring);
+      const int m = int(ring.size());
+      if (m < 2) continue;
+      for (int k = 0; k < m; ++k) {
+        const int s = ring[k], t = ring[(k + 1) % m];
+        if (s < p || t < p || s == t || !links.linked(s, t)) continue;
+        if (orient2d(pos[p], pos[s], pos[t]) <= 0) continue;
+        if (follows(s, t, p) && follows(t, p, s)) out.push_back({p, s, t});
+      }
+    }
+  }
+  std::vector<std::array<int, 3>> consistent;
+  for (auto& v : perThread) consistent.insert(consistent.end(), v.begin(), v.end());
+  std::sort(consistent.begin(), consistent.end());
+  st.consistentTriangles = long(consistent.size());
+  st.secondsLocalMeshes = since(t0);
+
+  // 4. Repair on the scaffold: eq. (12) swaps, keep every consistent edge, swaps again.
+  t0 = Clock::now();
+  const auto criterion = [&](int x, int z, int y, int w) {
+    return swapCriterion(pos[x], pos[z], pos[y], pos[w], 0.25 * (met[x] + met[z] + met[y] + met[w]));
+  };
+  const long maxSwaps = 20L * 3 * n + 1000;
+  bool capHit = false;
+  st.swaps += tri.flipWhile(criterion, maxSwaps, capHit);
+  st.swapCapHit = capHit;
+  std::vector<std::array<int, 2>> keep;
+  keep.reserve(3 * consistent.size());
+  for (const auto& t : consistent)
+    for (int k = 0; k < 3; ++k) keep.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  std::sort(keep.begin(), keep.end());
+  keep.erase(std::unique(keep.begin(), keep.end()), keep.end());
+  for (const auto& [a, b] : keep)
+    if (!tri.recoverEdge(a, b)) ++st.failedRecoveries;
+  st.swaps += tri.flipWhile(criterion, maxSwaps, capHit);
+  st.swapCapHit = st.swapCapHit || capHit;
+
+  // Output: inside triangles, nodes outside the boundary polygon dropped.
+  std::vector<int> vertexOf(n, -1);
+  for (int i = 0; i < n; ++i) {
+    if (!used[i]) { ++st.droppedNodes; continue; }
+    vertexOf[i] = int(result.nodeOfVertex.size());
+    result.nodeOfVertex.push_back(i);
+    result.mesh.vertices.push_back(pos[i]);
+  }
+  for (int t = 0; t < tri.numTriangleSlots(); ++t) {
+    if (!tri.inside(t)) continue;
+    auto v = tri.triangle(t);
+    std::array<int, 3> key = v;
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    if (!std::binary_search(consistent.begin(), consistent.end(), key)) ++st.repairedTriangles;
+    for (int& x : v) x = vertexOf[x];
+    result.mesh.triangles.push_back(v);
+  }
+  for (const auto& e : placement.boundaryEdges) result.mesh.boundaryEdges.push_back({vertexOf[e.a], vertexOf[e.b], e.ref});
+  st.secondsRepair += since(t0);
+  return result;
+}
+
+} // namespace ablmg::mesher
