@@ -111,10 +111,12 @@ int runMesh(const std::vector<std::string>& args) {
     metric = std::move(r.metric);
     const auto& c = r.stats.connect;
     stats = {{"placement", placementStatsJson(r.stats.placement)},
-             {"connect", {{"intersectionTests", c.intersectionTests}, {"crossingsFound", c.crossingsFound},
-                          {"deletedEdges", c.deletedEdges}, {"consistentTriangles", c.consistentTriangles},
-                          {"repairedTriangles", c.repairedTriangles}, {"secondsLocalMeshes", c.secondsLocalMeshes},
-                          {"secondsRepair", c.secondsRepair}}},
+             {"connect", {{"links", c.links}, {"intersectionTests", c.intersectionTests},
+                          {"crossingsFound", c.crossingsFound}, {"deletedEdges", c.deletedEdges},
+                          {"deletionRounds", c.deletionRounds}, {"consistentTriangles", c.consistentTriangles},
+                          {"repairedTriangles", c.repairedTriangles}, {"failedRecoveries", c.failedRecoveries},
+                          {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"droppedNodes", c.droppedNodes},
+                          {"secondsLocalMeshes", c.secondsLocalMeshes}, {"secondsRepair", c.secondsRepair}}},
              {"secondsValidate", r.stats.secondsValidate}};
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -139,7 +141,9 @@ int runMesh(const std::vector<std::string>& args) {
     throw;
   }
   std::cout << "ablmg mesh: " << mesh.numVertices() << " vertices, " << mesh.numTriangles() << " triangles in " << seconds
-            << " s (" << stats["placement"]["steps"] << " steps, residual " << stats["placement"]["finalResidual"] << ")";
+            << " s (" << stats["placement"]["steps"] << " steps, residual " << stats["placement"]["finalResidual"];
+  if (stats.contains("connect")) std::cout << ", repaired triangles " << stats["connect"]["repairedTriangles"];
+  std::cout << ")";
   for (const auto& o : outputs) std::cout << " -> " << o;
   std::cout << "\n";
   return 0;
