@@ -56,16 +56,14 @@ void readHeader(TextScanner& s, int& dim, bool dimRequired) {
   }
 }
 
-} // namespace
-
-Mesh2 parseMesh(const std::string& text, const std::string& name) {
+/// The sections of a .mesh file, in the file's order and orientation. With `zs` null, a
+/// Dimension 3 file must be planar (z = 0); otherwise every z is stored there (0 in Dimension 2).
+Mesh2 parseSections(const std::string& text, const std::string& name, std::vector<double>* zs, int& dim) {
   TextScanner s(text, name);
-  int dim = 2;
   readHeader(s, dim, true);
   Mesh2 mesh;
   std::vector<int> vertexLine;  // line of each vertex (for z ≠ 0 messages)
   bool haveVertices = false;
-  std::vector<double> zs;
   while (!s.atEnd()) {
     const auto kw = lower(s.next("section keyword"));
     if (kw == "end") break;
@@ -78,11 +76,10 @@ Mesh2 parseMesh(const std::string& text, const std::string& name) {
       for (long i = 0; i < n; ++i) {
         const double x = s.nextDouble("vertex x coordinate");
         const double y = s.nextDouble("vertex y coordinate");
-        if (dim == 3) {
-          const double z = s.nextDouble("vertex z coordinate");
-          ABLMG_REQUIRE(z == 0.0, s.where() << "vertex " << i + 1 << " has z = " << z
-                                            << ": only planar meshes (Dimension 3 with all z = 0) are read");
-        }
+        const double z = dim == 3 ? s.nextDouble("vertex z coordinate") : 0.0;
+        ABLMG_REQUIRE(zs || z == 0.0, s.where() << "vertex " << i + 1 << " has z = " << z
+                                                << ": only planar meshes (Dimension 3 with all z = 0) are read");
+        if (zs) zs->push_back(z);
         mesh.vertices.emplace_back(x, y);
         mesh.vertexRefs.push_back(int(s.nextInt("vertex reference", INT_MIN, INT_MAX)));
       }
@@ -121,6 +118,14 @@ Mesh2 parseMesh(const std::string& text, const std::string& name) {
     }
   }
   ABLMG_REQUIRE(haveVertices, name << ": no Vertices section");
+  return mesh;
+}
+
+} // namespace
+
+Mesh2 parseMesh(const std::string& text, const std::string& name) {
+  int dim = 2;
+  Mesh2 mesh = parseSections(text, name, nullptr, dim);
   // Orientation: triangles counter-clockwise (the format does not fix one).
   for (auto& t : mesh.triangles) {
     const Vec2 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
@@ -136,6 +141,18 @@ Mesh2 parseMesh(const std::string& text, const std::string& name) {
 }
 
 Mesh2 readMesh(const std::string& path) { return parseMesh(readTextFile(path), path); }
+
+SurfaceMeshFile parseSurfaceMesh(const std::string& text, const std::string& name) {
+  SurfaceMeshFile f;
+  std::vector<double> zs;
+  const Mesh2 mesh = parseSections(text, name, &zs, f.dimension);
+  for (int i = 0; i < mesh.numVertices(); ++i) f.vertices.emplace_back(mesh.vertices[i].x(), mesh.vertices[i].y(), zs[i]);
+  f.triangles = mesh.triangles;
+  f.triangleRefs = mesh.triangleRefs;
+  return f;
+}
+
+SurfaceMeshFile readSurfaceMesh(const std::string& path) { return parseSurfaceMesh(readTextFile(path), path); }
 
 std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices) {
   TextScanner s(text, name);

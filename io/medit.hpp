@@ -37,6 +37,19 @@ Mesh2 readMesh(const std::string& path);
 /// Same, from text in memory; `name` is used in messages (for tests and fuzzing).
 Mesh2 parseMesh(const std::string& text, const std::string& name);
 
+/// A .mesh file's vertices in 3D (z = 0 in Dimension 2) and its triangles, in the file's
+/// orientation (not reoriented, not validated); other sections are read and dropped.
+struct SurfaceMeshFile {
+  int dimension = 2;  ///< the file's Dimension
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> triangleRefs;
+};
+/// Reads a medit mesh of Dimension 2 or 3 (any z), e.g. a surface written by writeSurfaceMesh.
+/// Same errors as readMesh.
+SurfaceMeshFile readSurfaceMesh(const std::string& path);
+SurfaceMeshFile parseSurfaceMesh(const std::string& text, const std::string& name);
+
 /// Reads per-vertex metrics. If expectedVertices ≥ 0 the count must match (error names both).
 std::vector<Metric2> readSol(const std::string& path, int expectedVertices = -1);
 std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices = -1);

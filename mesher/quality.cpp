@@ -1,0 +1,173 @@
+#include "mesher/quality.hpp"
+
+#include "core/error.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace ablmg::mesher {
+namespace {
+
+void requireOnePerVertex(const Mesh2& mesh, std::span<const Metric2> metrics, const char* what) {
+  ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
+                what << ": " << metrics.size() << " metrics for " << mesh.numVertices() << " vertices");
+}
+
+/// min/mean/max of a non-empty range into s.
+template <class Stats>
+void minMeanMax(std::span<const double> x, Stats& s) {
+  s.count = long(x.size());
+  if (x.empty()) return;
+  const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+  s.min = *lo;
+  s.max = *hi;
+  double sum = 0;
+  for (double v : x) sum += v;
+  s.mean = sum / double(x.size());
+}
+
+std::string percent(double fraction) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f%%", 100 * fraction);
+  return buf;
+}
+
+} // namespace
+
+std::vector<double> edgeMetricLengths(const Mesh2& mesh, std::span<const Metric2> metrics) {
+  requireOnePerVertex(mesh, metrics, "edgeMetricLengths");
+  std::vector<double> l;
+  for (const auto& [a, b] : mesh.edges())
+    l.push_back(average(metrics[a], metrics[b]).length(mesh.vertices[b] - mesh.vertices[a]));  // eq. (3)
+  return l;
+}
+
+double triangleQuality(const Vec2& a, const Vec2& b, const Vec2& c, const Metric2& m) {
+  const double areaM = 0.5 * cross(b - a, c - a) * std::sqrt(m.det());
+  const double sumL2 = m.squaredLength(b - a) + m.squaredLength(c - b) + m.squaredLength(a - c);
+  return sumL2 > 0 ? 4 * std::sqrt(3.0) * areaM / sumL2 : 0.0;
+}
+
+std::vector<double> elementQualities(const Mesh2& mesh, std::span<const Metric2> metrics) {
+  requireOnePerVertex(mesh, metrics, "elementQualities");
+  std::vector<double> q;
+  q.reserve(mesh.triangles.size());
+  for (const auto& [i, j, k] : mesh.triangles) {
+    const Metric2 m = (1.0 / 3.0) * (metrics[i] + metrics[j] + metrics[k]);
+    q.push_back(triangleQuality(mesh.vertices[i], mesh.vertices[j], mesh.vertices[k], m));
+  }
+  return q;
+}
+
+EdgeLengthStats edgeLengthStats(std::span<const double> lengths, double e) {
+  ABLMG_REQUIRE(e > 0, "edgeLengthStats: bin width e = " << e << " must be > 0");
+  EdgeLengthStats s;
+  s.e = e;
+  minMeanMax(lengths, s);
+  if (lengths.empty()) return s;
+  const double n = double(lengths.size());
+  for (double l : lengths) {
+    s.inSqrt2 += (l >= 1 / std::numbers::sqrt2 && l <= std::numbers::sqrt2) / n;
+    s.within10 += (std::abs(l - 1) <= 0.1) / n;
+    const double eps = std::abs(l - 1.0);  // eq. (13) with l0 = 1
+    int bin = 5;
+    for (int k = 0; k < 5; ++k)
+      if (eps <= (k + 1) * e) {
+        bin = k;
+        break;
+      }
+    s.deviation[bin] += 1 / n;
+  }
+  return s;
+}
+
+ElementQualityStats elementQualityStats(std::span<const double> q) {
+  ElementQualityStats s;
+  minMeanMax(q, s);
+  for (double v : q) {
+    const double upper[4] = {0.2, 0.4, 0.6, 0.8};
+    s.bins[std::upper_bound(upper, upper + 4, v) - upper] += 1 / double(q.size());  // [lo, hi)
+  }
+  return s;
+}
+
+MeshQuality meshQuality(const Mesh2& mesh, std::span<const Metric2> metrics, double e) {
+  MeshQuality r;
+  r.dimension = 2;
+  r.vertices = mesh.numVertices();
+  r.triangles = mesh.numTriangles();
+  const MeshValidation v = mesh.validate();
+  r.valid = v.ok;
+  r.firstProblem = v.firstProblem;
+  const auto l = edgeMetricLengths(mesh, metrics);
+  r.edges = long(l.size());
+  r.edgeLengths = edgeLengthStats(l, e);
+  r.elements = elementQualityStats(elementQualities(mesh, metrics));
+  return r;
+}
+
+MeshQuality surfaceQuality(const SurfaceMesh& mesh, const Metric3Field& m3, double e) {
+  MeshQuality r;
+  r.dimension = 3;
+  r.vertices = long(mesh.vertices.size());
+  r.triangles = long(mesh.triangles.size());
+  r.firstProblem = checkManifold(mesh);
+  r.valid = r.firstProblem.empty();
+  const auto l = surfaceEdgeLengths(mesh, m3);
+  r.edges = long(l.size());
+  r.edgeLengths = edgeLengthStats(l, e);
+  r.elements = elementQualityStats(leeQuality(mesh, m3));
+  return r;
+}
+
+nlohmann::json toJson(const MeshQuality& q) {
+  const auto& l = q.edgeLengths;
+  const auto& el = q.elements;
+  return {{"dimension", q.dimension},
+          {"vertices", q.vertices},
+          {"triangles", q.triangles},
+          {"edges", q.edges},
+          {"valid", q.valid},
+          {"first_problem", q.firstProblem},
+          {"edge_length",
+           {{"min", l.min}, {"mean", l.mean}, {"max", l.max}, {"in_sqrt2", l.inSqrt2}, {"within_10pct", l.within10},
+            {"deviation", {{"e", l.e}, {"bins", l.deviation}}}}},
+          {"element_quality",
+           {{"measure", q.dimension == 2 ? "q = 4*sqrt(3)*A_M/(l1^2+l2^2+l3^2)" : "Lee alpha, eqs. (19)-(20)"},
+            {"min", el.min}, {"mean", el.mean}, {"max", el.max}, {"bins", el.bins}}}};
+}
+
+std::string toText(const MeshQuality& q) {
+  const auto& l = q.edgeLengths;
+  const auto& el = q.elements;
+  char buf[256];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "%ldD mesh: %ld vertices, %ld triangles, %ld edges; valid: %s\n", long(q.dimension),
+                q.vertices, q.triangles, q.edges, q.valid ? "yes" : "no");
+  s += buf;
+  if (!q.valid) s += "  first problem: " + q.firstProblem + "\n";
+  std::snprintf(buf, sizeof buf, "edge length l:   min %.4g  mean %.4g  max %.4g\n", l.min, l.mean, l.max);
+  s += buf;
+  s += "  l in [1/sqrt2, sqrt2]: " + percent(l.inSqrt2) + "   |l-1| <= 0.1: " + percent(l.within10) + "\n";
+  std::snprintf(buf, sizeof buf, "  deviation eps = |l-1| (eq. 13), e = %g:\n", l.e);
+  s += buf;
+  s += "    <=e " + percent(l.deviation[0]);
+  for (int k = 1; k < 5; ++k)
+    s += "  " + (k == 1 ? std::string() : std::to_string(k)) + "e-" + std::to_string(k + 1) + "e " + percent(l.deviation[k]);
+  s += "  >5e " + percent(l.deviation[5]) + "\n";
+  std::snprintf(buf, sizeof buf, "element quality %s:   min %.4g  mean %.4g  max %.4g\n",
+                q.dimension == 2 ? "q" : "alpha (Lee)", el.min, el.mean, el.max);
+  s += buf;
+  s += "   ";
+  for (int k = 0; k < 5; ++k) {
+    std::snprintf(buf, sizeof buf, " %.1f-%.1f %s", 0.2 * k, 0.2 * (k + 1), percent(el.bins[k]).c_str());
+    s += buf;
+  }
+  return s + "\n";
+}
+
+} // namespace ablmg::mesher
