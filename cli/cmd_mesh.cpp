@@ -111,7 +111,7 @@ int runMesh(const std::vector<std::string>& args) {
     metric = std::move(r.metric);
     const auto& c = r.stats.connect;
     stats = {{"placement", placementStatsJson(r.stats.placement)},
-             {"connect", {{"links", c.links}, {"intersectionTests", c.intersectionTests},
+             {"connect", {{"links", c.links}, {"longLinksDropped", c.longLinksDropped}, {"intersectionTests", c.intersectionTests},
                           {"crossingsFound", c.crossingsFound}, {"deletedEdges", c.deletedEdges},
                           {"deletionRounds", c.deletionRounds}, {"consistentTriangles", c.consistentTriangles},
                           {"repairedTriangles", c.repairedTriangles}, {"failedRecoveries", c.failedRecoveries},

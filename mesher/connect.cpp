@@ -53,6 +53,7 @@ public:
     double total = 0;
     for (const auto& e : edges) total += (pos[e.b] - pos[e.a]).norm();
     cell_ = std::max(total / double(edges.size()), std::sqrt(ext.x() * ext.y() / 4e6));
+    margin_ = 1e-9 * std::max(ext.x(), ext.y());
     nx_ = std::min(2048, int(ext.x() / cell_) + 1);
     ny_ = std::min(2048, int(ext.y() / cell_) + 1);
     offsets_.assign(std::size_t(nx_) * ny_ + 1, 0);
@@ -89,20 +90,31 @@ private:
   std::span<const Vec2> pos_;
   std::span<const BoundaryEdge> edges_;
   Vec2 lo_, hi_;
-  double cell_ = 1;
+  double cell_ = 1, margin_ = 0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> offsets_, ids_;
 
+  /// Calls f on every cell the closed segment p–q touches (it is cut into pieces no longer
+  /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true.
   template <class F> bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
     const auto cx = [&](double x) { return std::clamp(int((x - lo_.x()) / cell_), 0, nx_ - 1); };
     const auto cy = [&](double y) { return std::clamp(int((y - lo_.y()) / cell_), 0, ny_ - 1); };
-    const int x0 = cx(std::min(p.x(), q.x())), x1 = cx(std::max(p.x(), q.x()));
-    const int y0 = cy(std::min(p.y(), q.y())), y1 = cy(std::max(p.y(), q.y()));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x)
-        if (f(std::size_t(y) * nx_ + x)) return true;
+    const int pieces = 1 + int((q - p).lpNorm<Eigen::Infinity>() / cell_);
+    for (int k = 0; k < pieces; ++k) {
+      const Vec2 a = p + (q - p) * (double(k) / pieces), b = k + 1 == pieces ? q : p + (q - p) * (double(k + 1) / pieces);
+      const int x0 = cx(std::min(a.x(), b.x()) - margin_), x1 = cx(std::max(a.x(), b.x()) + margin_);
+      const int y0 = cy(std::min(a.y(), b.y()) - margin_), y1 = cy(std::max(a.y(), b.y()) + margin_);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x)
+          if (f(std::size_t(y) * nx_ + x)) return true;
+    }
     return false;
   }
+
+public:
+  /// Cells a link would visit; links spanning more than kMaxLinkCells are not tested.
+  int span(int i, int j) const { return 1 + int((pos_[j] - pos_[i]).lpNorm<Eigen::Infinity>() / cell_); }
+  static constexpr int kMaxLinkCells = 256;
 };
 
 /// The candidate links and their state during the deletions of step 2.
@@ -188,7 +200,8 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   Links links;
   links.offsets.assign(n + 1, 0);
   std::vector<std::vector<int>> rowsOf(n);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  long longLinks = 0;
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) reduction(+ : longLinks)
   for (int i = 0; i < n; ++i) {
     if (!used[i]) continue;
     for (int j : adj.neighbours(i)) {
@@ -197,6 +210,9 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
       if (!boundaryLink) {
         if (nextB[i] >= 0 && !inSector(i, j)) continue;
         if (nextB[j] >= 0 && !inSector(j, i)) continue;
+        // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
+        // size) is not worth testing: dropped, its triangles come from the scaffold.
+        if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) { ++longLinks; continue; }
         if (grid.crosses(i, j)) continue;
       }
       rowsOf[i].push_back(j);
@@ -223,6 +239,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     });
   }
   rowsOf = {};
+  st.longLinksDropped = longLinks / 2;
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
 

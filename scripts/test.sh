@@ -9,6 +9,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 jobs=$(nproc)
+# ctest runs tests in parallel and each uses OpenMP: sleeping (not spinning) idle threads keep
+# an oversubscribed machine from slowing to a crawl.
+export OMP_WAIT_POLICY=passive
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DABLMG_BUILD_BENCH=ON
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs" --timeout 900
