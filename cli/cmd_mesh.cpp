@@ -1,4 +1,4 @@
-// ablmg mesh CONFIG.json -o OUT.{mesh,vtu,png} [--bubbles-only] [--report R.json] [--seed N]
+// ablmg mesh CONFIG.json -o OUT.{mesh,vtu,png} [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N]
 //
 // Reads the JSON configuration (docs/config.md), prints every option in effect, meshes the
 // domain with ablmg::mesher::meshDomain (or only places the bubbles), writes the outputs
@@ -19,7 +19,7 @@
 namespace ablmg::cli {
 namespace {
 
-const char* kHelp = R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N]
+const char* kHelp = R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N]
 
 Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/config.md).
   -o PATH          output, format by extension (repeatable; adds to the config's "outputs"):
@@ -27,6 +27,8 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
   --bubbles-only   stop after node placement (paper §3): outputs hold the nodes and bubbles
   --report PATH    JSON report: resolved options, statistics, outputs
   --seed N         overrides options.placement.seed
+  --max-nodes N    refuse (before allocating) a metric asking for more than N nodes
+                   (options.placement.maxNodes; default 50 000 000)
   -h, --help       this text
 )";
 
@@ -42,7 +44,7 @@ int runMesh(const std::vector<std::string>& args) {
   std::string configPath, reportPath;
   std::vector<std::string> outputs;
   bool bubblesOnly = false;
-  long long seed = -1;
+  long long seed = -1, maxNodes = -1;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -68,6 +70,15 @@ int runMesh(const std::vector<std::string>& args) {
         used = 0;
       }
       ABLMG_REQUIRE(used == v.size() && seed >= 0, "--seed: expected a non-negative integer, got '" << v << "'");
+    } else if (a == "--max-nodes") {
+      const std::string& v = value();
+      std::size_t used = 0;
+      try {
+        maxNodes = std::stoll(v, &used);
+      } catch (...) {
+        used = 0;
+      }
+      ABLMG_REQUIRE(used == v.size() && maxNodes > 0, "--max-nodes: expected a positive integer, got '" << v << "'");
     } else if (!a.empty() && a[0] == '-') {
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg mesh --help)");
     } else {
@@ -80,6 +91,7 @@ int runMesh(const std::vector<std::string>& args) {
   // 1. Configuration; the command line overrides it.
   Config cfg = loadConfig(configPath);
   if (seed >= 0) cfg.options.placement.seed = std::uint64_t(seed);
+  if (maxNodes > 0) cfg.options.placement.maxNodes = long(maxNodes);
   if (bubblesOnly) cfg.options.placement.bubblesOnly = true;
   for (const auto* o : {&cfg.outputs.mesh, &cfg.outputs.vtu, &cfg.outputs.png})
     if (!o->empty()) outputs.push_back(*o);

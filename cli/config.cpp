@@ -283,7 +283,7 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     std::string msg = e.what();
     const auto p = msg.find("] ");
     if (p != std::string::npos) msg = msg.substr(p + 2);
