@@ -110,23 +110,40 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
       dirty[i] = char(d);
     }
   }
-  std::vector<std::vector<int>> scratch(static_cast<std::size_t>(omp_get_max_threads()));
+  // Candidates of row i are deduplicated with a per-thread stamp array (stamp[k] == i + 1:
+  // k already seen for row i) instead of sorting the ~10× redundant two-ring; only the
+  // accepted partners (a few dozen) are sorted, by insertion.
+  std::vector<std::vector<int>> stamps(static_cast<std::size_t>(omp_get_max_threads()));
+  const double r2 = radius * radius;
   return blockedCsr(n, [&](int i, std::vector<int>& out) {
     if (!dirty.empty() && !dirty[i]) {
       const auto row = old.neighbours(i);
       out.insert(out.end(), row.begin(), row.end());
       return;
     }
-    auto& cand = scratch[std::size_t(omp_get_thread_num())];
-    cand.clear();
+    auto& stamp = stamps[std::size_t(omp_get_thread_num())];
+    if (stamp.size() != std::size_t(n)) stamp.assign(std::size_t(n), 0);
+    const int mark = i + 1;
+    stamp[i] = mark;
+    const std::size_t start = out.size();
+    const Vec2 xi = x[i];
+    const Metric2& mi = m[i];
+    auto test = [&](int k) {
+      if (stamp[k] == mark) return;
+      stamp[k] = mark;
+      const Vec2 d = x[k] - xi;
+      if (mi.squaredLength(d) + m[k].squaredLength(d) <= 2.0 * r2) out.push_back(k);  // withinMetricRadius
+    };
     for (int j : old.neighbours(i)) {
-      cand.push_back(j);
-      for (int k : old.neighbours(j)) cand.push_back(k);
+      test(j);
+      for (int k : old.neighbours(j)) test(k);
     }
-    std::sort(cand.begin(), cand.end());
-    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    for (int j : cand)
-      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
+    for (std::size_t a = start + 1; a < out.size(); ++a) {  // insertion sort: short, nearly sorted
+      const int v = out[a];
+      std::size_t b = a;
+      for (; b > start && out[b - 1] > v; --b) out[b] = out[b - 1];
+      out[b] = v;
+    }
   });
 }
 

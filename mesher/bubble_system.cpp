@@ -101,18 +101,20 @@ Vec2 BubbleSystem::netForce(int i, const AdjacencyLists& adj, const DynamicsPara
   Vec2 f = Vec2::Zero();
   const Metric2& mi = metrics_[i];
   const bool segment = nodes_.kinds[i] == NodeKind::Segment;
+  const Vec2 xi = x[i];
   for (int j : adj.neighbours(i)) {
     if (segment && !sameChain(i, j)) continue;  // 1D packing along the loop piece
-    const Vec2 d = x[j] - x[i];
-    const double l2 = d.squaredNorm();
-    if (!(l2 > 0)) continue;
-    const double a = std::sqrt(mi.squaredLength(d)), b = std::sqrt(metrics_[j].squaredLength(d));
-    const double w = 2.0 / (1.0 / a + 1.0 / b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
+    const Vec2 d = x[j] - xi;
+    const double a2 = mi.squaredLength(d), b2 = metrics_[j].squaredLength(d);
+    // w ≥ min(a, b) (harmonic mean), so min(a², b²) > 1.5² means no force; also d = 0.
+    if (!(a2 > 0 && b2 > 0) || std::min(a2, b2) > 2.25) continue;
+    const double a = std::sqrt(a2), b = std::sqrt(b2);
+    const double w = 2.0 * a * b / (a + b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
     const double fw = interBubbleForce(w, p.k0);
     if (fw == 0.0) continue;
-    const double l = std::sqrt(l2);
-    const double l0 = restLength(0.5 * l / a, 0.5 * l / b);  // eq. (8)
-    f -= (fw * l0 / l) * d;
+    // eq. (8): l0 = l_ij + l_ji = l/(2a) + l/(2b) = l/w, so the pair force fw·l0·d/l = (fw/w)·d
+    // needs neither l = |d| nor l0.
+    f -= (fw / w) * d;
   }
   if (segment) {
     const Vec2 t = geo_->tangentAt(nodes_.loops[i], s_[i]);
