@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 namespace ablmg::mesher {
@@ -151,41 +152,17 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
   return u.squaredNorm() < v.squaredNorm();
 }
 
-} // namespace
-
-ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
-  (void)domain;  // the boundary is the polygon through placement.boundaryEdges
+/// Steps 1–3 (paper §4.1) over the nodes with used[i] set: links, eq. (12) deletions, and the
+/// consistent triangles (sorted, smallest id first). Fills the local-mesh statistics.
+std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, const std::vector<char>& used,
+                                            int threads, ConnectStats& st) {
   const auto& pos = placement.nodes.positions;
   const auto& met = placement.metrics;
   const int n = int(pos.size());
-  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n,
-                "connect: placement has inconsistent sizes");
-  ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  ConnectResult result;
-  ConnectStats& st = result.stats;
-
-  // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
-  auto t0 = Clock::now();
-  Triangulation tri(pos);
-  std::vector<std::array<int, 2>> boundary;
-  boundary.reserve(placement.boundaryEdges.size());
-  for (const auto& e : placement.boundaryEdges) {
-    if (!tri.recoverEdge(e.a, e.b)) {
-      throw Error("connect: boundary edge between nodes " + std::to_string(e.a) + " and " + std::to_string(e.b) +
-                  " cannot be made a mesh edge (another node lies on it)");
-    }
-    boundary.push_back({e.a, e.b});
-  }
-  tri.classify(boundary);
-  std::vector<char> used(n, 0);
-  for (int t = 0; t < tri.numTriangleSlots(); ++t)
-    if (tri.inside(t))
-      for (int v : tri.triangle(t)) used[v] = 1;
-  st.secondsRepair += since(t0);
-
+  st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
+  st.deletionRounds = 0;
   // 1. Links: adjacency pairs inside the domain.
-  t0 = Clock::now();
+  const auto t0 = Clock::now();
   std::vector<int> prevB(n, -1), nextB(n, -1);
   for (const auto& e : placement.boundaryEdges) { nextB[e.a] = e.b; prevB[e.b] = e.a; }
   const BoundaryGrid grid(pos, placement.boundaryEdges);
@@ -312,6 +289,67 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   std::sort(consistent.begin(), consistent.end());
   st.consistentTriangles = long(consistent.size());
   st.secondsLocalMeshes = since(t0);
+  return consistent;
+}
+
+} // namespace
+
+ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
+  (void)domain;  // the boundary is the polygon through placement.boundaryEdges
+  const auto& pos = placement.nodes.positions;
+  const auto& met = placement.metrics;
+  const int n = int(pos.size());
+  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n,
+                "connect: placement has inconsistent sizes");
+  ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  ConnectResult result;
+  ConnectStats& st = result.stats;
+
+  // Steps 1–3 over all nodes. When the union of the local meshes is already a valid mesh of
+  // the polygon through the boundary nodes (the usual case), it is the mesh, as in the paper.
+  std::vector<char> used(n, 1);
+  std::vector<std::array<int, 3>> consistent = localMeshes(placement, used, threads, st);
+  {
+    const auto t0 = Clock::now();
+    Mesh2 un;
+    un.vertices = pos;
+    un.triangles = consistent;
+    un.boundaryEdges = placement.boundaryEdges;
+    double polygonArea = 0;
+    for (const auto& e : placement.boundaryEdges) polygonArea += 0.5 * cross(pos[e.a], pos[e.b]);
+    const bool ok = un.validate(polygonArea, 1e-9).ok;
+    st.secondsRepair += since(t0);
+    if (ok) {
+      result.mesh = std::move(un);
+      result.nodeOfVertex.resize(n);
+      std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
+      return result;
+    }
+  }
+
+
+  // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
+  auto t0 = Clock::now();
+  Triangulation tri(pos);
+  std::vector<std::array<int, 2>> boundary;
+  boundary.reserve(placement.boundaryEdges.size());
+  for (const auto& e : placement.boundaryEdges) {
+    if (!tri.recoverEdge(e.a, e.b)) {
+      throw Error("connect: boundary edge between nodes " + std::to_string(e.a) + " and " + std::to_string(e.b) +
+                  " cannot be made a mesh edge (another node lies on it)");
+    }
+    boundary.push_back({e.a, e.b});
+  }
+  tri.classify(boundary);
+  std::fill(used.begin(), used.end(), 0);
+  for (int t = 0; t < tri.numTriangleSlots(); ++t)
+    if (tri.inside(t))
+      for (int v : tri.triangle(t)) used[v] = 1;
+  st.secondsRepair += since(t0);
+
+  // Nodes outside the boundary polygon: redo the local meshes without them.
+  if (std::count(used.begin(), used.end(), 0) > 0) consistent = localMeshes(placement, used, threads, st);
 
   // 4. Repair on the scaffold: eq. (12) swaps, keep every consistent edge, swaps again.
   t0 = Clock::now();

@@ -12,6 +12,9 @@
 ///      the lists of the previous round, so the result does not depend on thread count;
 ///   3. the union: a triangle (P, S_k, S_{k+1}) of consecutive satellites is kept when it is
 ///      in the local meshes of all three of its nodes (a "consistent" triangle);
+///   If the consistent triangles already form a valid mesh of the polygon through the boundary
+///   nodes (Mesh2::validate with that polygon's area: the usual case), they are the mesh, as in
+///   the paper. Otherwise:
 ///   4. repair, always valid by construction: a constrained Delaunay triangulation of the
 ///      nodes (triangulation.hpp) with the boundary edges, then eq. (12) swaps, then every
 ///      edge of a consistent triangle recovered by flips and locked, then eq. (12) swaps of
@@ -43,7 +46,8 @@ struct ConnectStats {
   long swaps = 0;               ///< eq. (12) edge swaps done by the repair
   bool swapCapHit = false;      ///< the swap cap (20 per edge) stopped the repair's swaps
   long droppedNodes = 0;        ///< nodes outside the boundary polygon, not in the mesh
-  double secondsLocalMeshes = 0, secondsRepair = 0;
+  double secondsLocalMeshes = 0;
+  double secondsRepair = 0;     ///< validating the union, and the repair when it was needed
 };
 
 struct ConnectResult {
