@@ -46,7 +46,8 @@ int PointLocator::startTriangle(const Vec2& p) const {
 }
 
 PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
-  int t = (hint >= 0 && hint < mesh_.numTriangles()) ? hint : startTriangle(p);
+  const bool fromHint = hint >= 0 && hint < mesh_.numTriangles();
+  int t = fromHint ? hint : startTriangle(p);
   int came = -1;
   const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
   bool restarted = false;
@@ -83,7 +84,19 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
       }
     }
     if (exit < 0) break;                       // p is inside (or on) triangle t
-    if (neighbours_[t][exit] < 0) break;       // p is outside the mesh, beyond this boundary edge
+    if (neighbours_[t][exit] < 0) {
+      // Beyond a boundary edge. From a far hint the straight walk may have left a non-convex
+      // mesh (a re-entrant corner, a hole) although p is inside: walk again from the grid's
+      // start triangle, which is near p. Stopping there too means p is outside.
+      if (!restarted && fromHint) {
+        restarted = true;
+        t = startTriangle(p);
+        came = -1;
+        step = -1;
+        continue;
+      }
+      break;
+    }
     came = t;
     t = neighbours_[t][exit];
   }

@@ -5,6 +5,7 @@
 /// the point's cell, or the nearest non-empty cell); a visibility walk with exact orientation
 /// tests then moves to the containing triangle. Passing the previous answer as `hint`
 /// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query.
+/// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid.
 /// Points outside the mesh get the triangle of the boundary edge where the walk stopped and
 /// barycentric coordinates clamped to it (nearest-point extrapolation), with inside = false.
 /// The mesh must outlive the locator and must be valid (Mesh2::validate).

@@ -1,6 +1,7 @@
 #include "core/error.hpp"
 #include "core/metric_field.hpp"
 #include "core/point_locator.hpp"
+#include "core/predicates.hpp"
 
 #include <gtest/gtest.h>
 
@@ -59,6 +60,32 @@ TEST(PointLocator, FindsContainingTriangleAndReproducesLinearFunctions) {
   }
   const auto out = loc.locate(Vec2(1.5, 0.5));
   EXPECT_FALSE(out.inside);
+}
+
+TEST(PointLocator, WalkAroundAReentrantCornerFromAFarHint) {
+  // An L-shaped mesh (the grid without its lower-right quarter): the straight walk from a
+  // lower-left hint to an upper-right point leaves the mesh through the notch; the locator
+  // must still find the containing triangle (this once gave the adaptive loop wrong metrics).
+  Mesh2 full = grid(8, 3), l;
+  l.vertices = full.vertices;
+  for (const auto& t : full.triangles) {
+    const Vec2 c = (full.vertices[t[0]] + full.vertices[t[1]] + full.vertices[t[2]]) / 3.0;
+    if (!(c.x() > 0.5 && c.y() < 0.5)) l.triangles.push_back(t);
+  }
+  const PointLocator locator(l);
+  int hint = -1;
+  for (int t = 0; t < l.numTriangles() && hint < 0; ++t) {
+    const Vec2 c = (l.vertices[l.triangles[t][0]] + l.vertices[l.triangles[t][1]] + l.vertices[l.triangles[t][2]]) / 3.0;
+    if (c.x() > 0.3 && c.x() < 0.45 && c.y() < 0.15) hint = t;
+  }
+  ASSERT_GE(hint, 0);
+  const Vec2 p(0.9, 0.6);
+  const auto loc = locator.locate(p, hint);
+  EXPECT_TRUE(loc.inside);
+  const auto& tr = l.triangles[loc.triangle];
+  for (int k = 0; k < 3; ++k) EXPECT_GE(orient2d(l.vertices[tr[(k + 1) % 3]], l.vertices[tr[(k + 2) % 3]], p), 0);
+  // A point inside the notch is outside the mesh.
+  EXPECT_FALSE(locator.locate(Vec2(0.8, 0.2), hint).inside);
 }
 
 TEST(BackgroundMetricField, ReproducesConstantAndInterpolatesLogEuclidean) {
