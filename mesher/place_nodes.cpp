@@ -97,6 +97,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   const int popEvery = 10;
   const int popUntil = std::max(popEvery, int(0.6 * options.maxSteps));
   int quietPasses = 0;
+  double stallMark = 0;
+  int stallMarkStep = -1;
   bool populationSettled = false;
   const double sleepBelow = 0.1 * options.tolerance;  // active set: see BubbleSystem::updateActivity
 
@@ -112,6 +114,18 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       st.secondsDynamics += since(t);
     }
     if (residual < options.tolerance && populationSettled) break;
+    // Stall rule: the residual must halve within stallSteps steps of each mark, else the run
+    // stops (some metrics from solvers have no equilibrium within tolerance: a few bubbles
+    // where M varies by ~100 % per metric unit keep jolting). Population passes go on meanwhile.
+    if (options.stallSteps > 0) {
+      if (stallMarkStep < 0 || residual < 0.5 * stallMark) {
+        stallMark = residual;
+        stallMarkStep = step;
+      } else if (step - stallMarkStep >= options.stallSteps) {
+        st.stalled = true;
+        break;
+      }
+    }
     t = Clock::now();
     sys.advance(p);
     if (!constant) sys.updateMetrics(metric, false);
