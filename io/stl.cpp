@@ -1,5 +1,7 @@
 #include "io/stl.hpp"
 
+#include <Eigen/Geometry>  // cross()
+
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 
