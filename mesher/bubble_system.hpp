@@ -90,12 +90,17 @@ private:
   /// node of that piece or one of its two corners).
   bool sameChain(int i, int j) const;
   Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
+  void structureChanged();  ///< after population edits: the next step clears its per-node flags in full
   std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
+  std::vector<int> advanced_;  ///< list_ as of the last advance() (the only bubbles moved_ can flag)
+  std::vector<char> next_;     ///< updateActivity's scratch
+  bool resetForces_ = true, resetMoved_ = true, resetActivity_ = true;
   const DomainGeometry* geo_;
   NodeSet nodes_;
   std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
   std::vector<Vec2> vel_, force_;
   std::vector<double> res_, disp_;
+  std::vector<double> clear_;  ///< Interior nodes: lower bound of the Euclidean distance to the boundary (0 = unknown)
   std::vector<Vec2> refPos_;  ///< positions at the last clearMoved()
   std::vector<char> active_, moved_, movedSinceRefresh_, kicked_;
   double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
