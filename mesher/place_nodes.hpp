@@ -20,7 +20,7 @@
 ///
 /// Speed (issue 7; 1 thread, CPU seconds on the shared 2-core machine, bench/bench_place_nodes
 /// with tol 1e-2): constant metric on the radius-10 disk, 10⁵ nodes 2.6 s (3.7 s before the
-/// issue-7 work), 10⁶ nodes 19.9 s (29.0 s), 387 / 589 steps, ~13 % of the bubbles awake per
+/// issue-7 work), 10⁶ nodes 19.9 s (29.0 s), 387 / 589 steps, 36 % / 13 % of the bubbles awake per
 /// step. Wave-front 12k remesh (`ablmg adapt --problem wavefront --target-vertices 3000,12000`):
 /// 2.8 s (13.2 s: it ran to maxSteps; the stall rule stops it at ~680 steps, same quality).
 /// On a loaded machine OpenMP's default busy-wait makes 2 threads far slower than 1 (seconds
