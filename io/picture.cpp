@@ -279,4 +279,46 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
   c.save(path);
 }
 
+void tilePictures(const std::string& path, const std::vector<std::string>& pngPaths, int columns,
+                  const std::vector<std::string>& captions, const PictureOptions& o) {
+  ABLMG_REQUIRE(columns >= 1, path << ": columns = " << columns << " must be at least 1");
+  ABLMG_REQUIRE(captions.empty() || captions.size() == pngPaths.size(),
+                path << ": " << captions.size() << " captions for " << pngPaths.size() << " pictures");
+  std::vector<Surface> tiles;
+  for (const auto& p : pngPaths) {
+    tiles.emplace_back(cairo_image_surface_create_from_png(p.c_str()), cairo_surface_destroy);
+    ABLMG_REQUIRE(cairo_surface_status(tiles.back().get()) == CAIRO_STATUS_SUCCESS, p << ": cannot read as PNG");
+  }
+  const double cellW = double(o.width) / columns;
+  const int band = captions.empty() ? 0 : 26;
+  const auto scaleOf = [&](std::size_t i) { return std::min(1.0, cellW / cairo_image_surface_get_width(tiles[i].get())); };
+  std::vector<double> rowHeight;  // tallest scaled picture of each row, caption band included
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    if (i % columns == 0) rowHeight.push_back(0);
+    rowHeight.back() = std::max(rowHeight.back(), band + scaleOf(i) * cairo_image_surface_get_height(tiles[i].get()));
+  }
+  double total = 0;
+  for (double h : rowHeight) total += h;
+  Canvas c(o.width, std::clamp(int(std::ceil(total)), 1, 40000));
+  cairo_t* cr = c.cr.get();
+  double y = 0;
+  for (std::size_t i = 0; i < tiles.size(); ++i) {
+    const std::size_t row = i / columns;
+    const double x = double(i % columns) * cellW, s = scaleOf(i);
+    if (band > 0) {
+      cairo_set_source_rgb(cr, 0, 0, 0);
+      text(cr, x + 12, y + 19, captions[i], 15);
+    }
+    cairo_save(cr);
+    cairo_translate(cr, x, y + band);
+    cairo_scale(cr, s, s);
+    cairo_set_source_surface(cr, tiles[i].get(), 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    if (i + 1 == tiles.size() || (i + 1) % columns == 0) y += rowHeight[row];
+  }
+  c.save(path);
+}
+
 } // namespace ablmg::io

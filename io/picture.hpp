@@ -42,4 +42,13 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
                     const std::string& xLabel = "N", const std::string& yLabel = "error", const std::string& title = "",
                     const PictureOptions& options = {});
 
+/// Several PNGs side by side on one image (e.g. two convergence plots over two meshes): the
+/// pictures in `pngPaths` are laid out row by row, `columns` per row, each scaled down to the
+/// width of its cell (the output width / columns, never scaled up) and given its caption (when
+/// `captions` is non-empty, one per picture) in a band above it. The output width is
+/// options.width; the height follows the tallest scaled picture of each row. Throws InputError
+/// if a file cannot be read as PNG or the counts do not match.
+void tilePictures(const std::string& path, const std::vector<std::string>& pngPaths, int columns,
+                  const std::vector<std::string>& captions = {}, const PictureOptions& options = {});
+
 } // namespace ablmg::io

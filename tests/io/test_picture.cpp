@@ -82,3 +82,24 @@ TEST(Picture, LogLogPlotWritesPng) {
   EXPECT_THROW(io::drawLogLogPlot(p, {{"bad", {1}, {}}}), ablmg::InputError);
   std::filesystem::remove(p);
 }
+
+TEST(Picture, TilePicturesPlacesEachScaledPictureInItsCell) {
+  // Two 400-px plots and one mesh, two per row at 600 px: each scaled to 300 px, captions above.
+  const auto a = tmp("tile_a.png"), b = tmp("tile_b.png"), m = tmp("tile_m.png"), out = tmp("tiles.png");
+  io::PictureOptions small;
+  small.width = 400;
+  io::drawLogLogPlot(a, {{"L2", {100, 1000}, {1e-2, 1e-3}}}, {}, "N", "error", "", small);  // 400 × 300
+  io::drawLogLogPlot(b, {{"H1", {100, 1000}, {1e-1, 3e-2}}}, {}, "N", "error", "", small);
+  io::drawMesh(m, io::readMesh(std::string(ABLMG_TEST_DATA) + "/square.mesh"), {}, "", small);
+  io::PictureOptions o;
+  o.width = 600;
+  io::tilePictures(out, {a, b, m}, 2, {"left", "right", "mesh"}, o);
+  Png png(out), mesh(m);
+  ASSERT_TRUE(png.ok());
+  EXPECT_EQ(png.width(), 600);
+  EXPECT_EQ(png.height(), 26 + 225 + 26 + mesh.height() * 300 / 400);  // row heights: band + scaled picture
+  EXPECT_THROW(io::tilePictures(out, {a, b}, 2, {"only one"}), ablmg::InputError);
+  EXPECT_THROW(io::tilePictures(out, {a, "/nonexistent/x.png"}, 2), ablmg::InputError);
+  EXPECT_THROW(io::tilePictures(out, {a}, 0), ablmg::InputError);
+  for (const auto& p : {a, b, m, out}) std::filesystem::remove(p);
+}
