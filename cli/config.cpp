@@ -92,6 +92,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"adjacencyRefresh", &PlacementOptions::adjacencyRefresh},
       {"maxSteps", &PlacementOptions::maxSteps},
       {"tolerance", &PlacementOptions::tolerance},
+      {"relativeTolerance", &PlacementOptions::relativeTolerance},
       {"maxNodes", &PlacementOptions::maxNodes},
       {"seed", &PlacementOptions::seed},
       {"threads", &PlacementOptions::threads},

@@ -53,6 +53,8 @@ public:
                       const std::string& source = "metric");
   ~AnalyticMetricField() override;
   Metric2 at(const Vec2& p) const override;
+  /// True when no expression uses x or y (then M is evaluated once, at construction).
+  bool isConstant() const override;
 
 private:
   struct Impl;

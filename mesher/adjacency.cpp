@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 
 namespace ablmg::mesher {
@@ -92,59 +93,110 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
 
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> x, std::span<const Metric2> m,
                                 double radius, std::span<const char> moved) {
-  const int n = old.size();
-  std::vector<char> dirty;
-  if (!moved.empty()) {
-    std::vector<char> near(std::size_t(n), 0);
-    dirty.assign(std::size_t(n), 0);
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      bool d = moved[i] != 0;
-      for (int j : old.neighbours(i)) d = d || moved[j];
-      near[i] = char(d);
-    }
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      bool d = near[i] != 0;
-      for (int j : old.neighbours(i)) d = d || near[j];
-      dirty[i] = char(d);
+  AdjacencyLists a = old;
+  refreshAdjacencyInPlace(a, x, m, radius, moved);
+  return a;
+}
+
+void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
+                             std::span<const char> moved) {
+  const int n = lists.size();
+  // Rows to recompute, ascending: those with a moved node within two hops (all if no mask).
+  std::vector<int> dirty;
+  if (moved.empty()) {
+    dirty.resize(std::size_t(n));
+    std::iota(dirty.begin(), dirty.end(), 0);
+  } else {
+    std::vector<char> near(moved.begin(), moved.end());
+    for (int i = 0; i < n; ++i)
+      if (moved[i])
+        for (int j : lists.neighbours(i)) near[j] = 1;
+    std::vector<char> mark(near);
+    for (int i = 0; i < n; ++i)
+      if (near[i])
+        for (int j : lists.neighbours(i)) mark[j] = 1;
+    for (int i = 0; i < n; ++i)
+      if (mark[i]) dirty.push_back(i);
+  }
+  if (dirty.empty()) return;
+  // New rows of the dirty set from the two-ring of the current lists, in contiguous blocks of
+  // the dirty list per thread (the result does not depend on the thread count). Candidates
+  // are deduplicated with a per-thread stamp array (stamp[k] == i + 1: k already seen for
+  // row i) instead of sorting the ~10× redundant two-ring; only the accepted partners (a few
+  // dozen) are sorted, by insertion.
+  const int nd = int(dirty.size());
+  const int nt = omp_get_max_threads();
+  std::vector<std::vector<int>> buf(static_cast<std::size_t>(nt));
+  std::vector<int> rowStart(std::size_t(nd) + 1, 0), rowThread(std::size_t(nd), 0);
+  const double r2 = radius * radius;
+  const AdjacencyLists& old = lists;
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
+    std::vector<int> stamp(lo < hi ? std::size_t(n) : 0, 0);
+    auto& out = buf[std::size_t(t)];
+    for (int k = lo; k < hi; ++k) {
+      const int i = dirty[std::size_t(k)];
+      const int mk = i + 1;
+      stamp[i] = mk;
+      const std::size_t start = out.size();
+      rowStart[std::size_t(k)] = int(start);
+      rowThread[std::size_t(k)] = t;
+      const Vec2 xi = x[i];
+      const Metric2& mi = m[i];
+      auto test = [&](int c) {
+        if (stamp[c] == mk) return;
+        stamp[c] = mk;
+        const Vec2 d = x[c] - xi;
+        if (mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2) out.push_back(c);  // withinMetricRadius
+      };
+      for (int j : old.neighbours(i)) {
+        test(j);
+        for (int c : old.neighbours(j)) test(c);
+      }
+      for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
+        const int v = out[q];
+        std::size_t b = q;
+        for (; b > start && out[b - 1] > v; --b) out[b] = out[b - 1];
+        out[b] = v;
+      }
     }
   }
-  // Candidates of row i are deduplicated with a per-thread stamp array (stamp[k] == i + 1:
-  // k already seen for row i) instead of sorting the ~10× redundant two-ring; only the
-  // accepted partners (a few dozen) are sorted, by insertion.
-  std::vector<std::vector<int>> stamps(static_cast<std::size_t>(omp_get_max_threads()));
-  const double r2 = radius * radius;
-  return blockedCsr(n, [&](int i, std::vector<int>& out) {
-    if (!dirty.empty() && !dirty[i]) {
-      const auto row = old.neighbours(i);
-      out.insert(out.end(), row.begin(), row.end());
-      return;
+  auto newRow = [&](int k) {
+    const auto& b = buf[std::size_t(rowThread[std::size_t(k)])];
+    const int s = rowStart[std::size_t(k)];
+    const int e = k + 1 < nd && rowThread[std::size_t(k + 1)] == rowThread[std::size_t(k)] ? rowStart[std::size_t(k + 1)] : int(b.size());
+    return std::span<const int>(b.data() + s, b.data() + e);
+  };
+  // Same sizes (the common case: partners change rarely within the list radius): overwrite in
+  // place. Otherwise lay the rows out again.
+  bool sameSizes = true;
+  for (int k = 0; k < nd && sameSizes; ++k) sameSizes = int(newRow(k).size()) == int(old.neighbours(dirty[std::size_t(k)]).size());
+  if (sameSizes) {
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < nd; ++k) {
+      const auto r = newRow(k);
+      std::copy(r.begin(), r.end(), lists.ids.begin() + lists.offsets[dirty[std::size_t(k)]]);
     }
-    auto& stamp = stamps[std::size_t(omp_get_thread_num())];
-    if (stamp.size() != std::size_t(n)) stamp.assign(std::size_t(n), 0);
-    const int mark = i + 1;
-    stamp[i] = mark;
-    const std::size_t start = out.size();
-    const Vec2 xi = x[i];
-    const Metric2& mi = m[i];
-    auto test = [&](int k) {
-      if (stamp[k] == mark) return;
-      stamp[k] = mark;
-      const Vec2 d = x[k] - xi;
-      if (mi.squaredLength(d) + m[k].squaredLength(d) <= 2.0 * r2) out.push_back(k);  // withinMetricRadius
-    };
-    for (int j : old.neighbours(i)) {
-      test(j);
-      for (int k : old.neighbours(j)) test(k);
-    }
-    for (std::size_t a = start + 1; a < out.size(); ++a) {  // insertion sort: short, nearly sorted
-      const int v = out[a];
-      std::size_t b = a;
-      for (; b > start && out[b - 1] > v; --b) out[b] = out[b - 1];
-      out[b] = v;
-    }
-  });
+    return;
+  }
+  std::vector<int> rowSize(static_cast<std::size_t>(n)), slot(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i) rowSize[std::size_t(i)] = lists.offsets[i + 1] - lists.offsets[i];
+  for (int k = 0; k < nd; ++k) {
+    slot[std::size_t(dirty[std::size_t(k)])] = k;
+    rowSize[std::size_t(dirty[std::size_t(k)])] = int(newRow(k).size());
+  }
+  AdjacencyLists a;
+  a.offsets.assign(std::size_t(n) + 1, 0);
+  for (int i = 0; i < n; ++i) a.offsets[i + 1] = a.offsets[i] + rowSize[std::size_t(i)];
+  a.ids.resize(std::size_t(a.offsets[n]));
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    const auto r = slot[std::size_t(i)] >= 0 ? newRow(slot[std::size_t(i)]) : old.neighbours(i);
+    std::copy(r.begin(), r.end(), a.ids.begin() + a.offsets[i]);
+  }
+  lists = std::move(a);
 }
 
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,

@@ -30,6 +30,10 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const M
 /// rule keeps the result symmetric); the result is the same as without the mask.
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> positions,
                                 std::span<const Metric2> metrics, double radius, std::span<const char> moved = {});
+/// The same, in place: only the rows to recompute are touched when no row changes its length
+/// (cost ∝ rows near moved nodes, not N: the dynamics refreshes ~50 times per run).
+void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> positions, std::span<const Metric2> metrics,
+                             double radius, std::span<const char> moved = {});
 
 /// After population edits: `old` lists of the previous nodes, `map` old → new id (−1 =
 /// deleted; empty = identity), new bubbles are ids firstNew … positions.size()−1. Rows of

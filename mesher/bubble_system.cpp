@@ -230,7 +230,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
 
 long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, double dt) {
   const int n = nodes_.size();
-  const double eps = 0.1 * sleepBelow * dt;  // a move this small (metric) wakes nobody
+  const double eps = 0.3 * sleepBelow * dt;  // a move this small (metric) wakes nobody
   moveEps2_ = eps * eps;
   // Since the last population edit (full pass), only the bubbles advanced in this step can
   // have moved and nobody was kicked.

@@ -45,13 +45,17 @@ struct PlacementOptions {
   /// stable up to Δt ≈ 0.5; with the paper's values the disk cases of §4.3 reduced the largest
   /// force only ×3–5 in 400 steps (over-damped soft modes, tiny steps), with c = 1, Δt = 0.3
   /// ×600–850 in ≤ 1400 steps. Set damping = 3.8429, timeStep = 0.02 for the paper's run.
-  double damping = 1.0;       ///< c of eq. (5) (paper §6: 3.8429, see above)
-  double timeStep = 0.3;      ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
+  double damping = 0.4;       ///< c of eq. (5) (paper §6: 3.8429, see above)
+  double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 20;  ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
   int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
-  double tolerance = 1e-3;    ///< stop when the residual (largest net force |f_i|_{M_i}, metric units; see
-                              ///< bubble_system.hpp) falls below this, once the population has settled
+  /// Convergence: stop when the residual (largest net force |f_i|_{M_i}, metric units; see
+  /// bubble_system.hpp) has dropped below max(tolerance, relativeTolerance × initial residual),
+  /// checked with every bubble awake, once the population has settled. The relative part is
+  /// the early-stopping knob of issue 7 (README "Speed": time vs quality table).
+  double tolerance = 1e-3;
+  double relativeTolerance = 1e-2;
   /// Stall rule (0 = off): stop when the residual has not halved within this many steps
   /// (stats.stalled). Converging runs halve it every ~100 steps, with plateaus of up to ~450
   /// (paper disks: unaffected at 500, the line case stops early at 300); graded metrics from
