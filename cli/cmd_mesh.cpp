@@ -35,7 +35,8 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
 nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
   return {{"predictedNodes", s.predictedNodes}, {"initialNodes", s.initialNodes}, {"finalNodes", s.finalNodes},
           {"inserted", s.inserted},             {"deleted", s.deleted},           {"steps", s.steps},
-          {"hitStepCap", s.hitStepCap},         {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},
+          {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled},           {"activeBubbleSteps", s.activeBubbleSteps},
+          {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},
           {"secondsInitial", s.secondsInitial}, {"secondsDynamics", s.secondsDynamics},
           {"secondsAdjacency", s.secondsAdjacency}, {"secondsPopulation", s.secondsPopulation}};
 }

@@ -91,6 +91,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"adjacencyRadius", &PlacementOptions::adjacencyRadius},
       {"adjacencyRefresh", &PlacementOptions::adjacencyRefresh},
       {"maxSteps", &PlacementOptions::maxSteps},
+      {"stallSteps", &PlacementOptions::stallSteps},
       {"tolerance", &PlacementOptions::tolerance},
       {"relativeTolerance", &PlacementOptions::relativeTolerance},
       {"maxNodes", &PlacementOptions::maxNodes},

@@ -98,51 +98,45 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
   return a;
 }
 
-void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
-                             std::span<const char> moved) {
-  const int n = lists.size();
-  // Rows to recompute, ascending: those with a moved node within two hops (all if no mask).
-  std::vector<int> dirty;
-  if (moved.empty()) {
-    dirty.resize(std::size_t(n));
-    std::iota(dirty.begin(), dirty.end(), 0);
-  } else {
-    std::vector<char> near(moved.begin(), moved.end());
-    for (int i = 0; i < n; ++i)
-      if (moved[i])
-        for (int j : lists.neighbours(i)) near[j] = 1;
-    std::vector<char> mark(near);
-    for (int i = 0; i < n; ++i)
-      if (near[i])
-        for (int j : lists.neighbours(i)) mark[j] = 1;
-    for (int i = 0; i < n; ++i)
-      if (mark[i]) dirty.push_back(i);
+namespace {
+
+/// New rows of `rows` (ascending ids) from the two-ring of the current lists, in contiguous
+/// blocks per thread (the result does not depend on the thread count). Candidates are
+/// deduplicated with a per-thread stamp array (stamp[k] == i + 1: k already seen for row i)
+/// instead of sorting the ~10× redundant two-ring; only the accepted partners (a few dozen)
+/// are sorted, by insertion. Row k of the result is rowOf(k).
+struct NewRows {
+  std::vector<std::vector<int>> buf;
+  std::vector<int> start, thread;
+  std::span<const int> rowOf(int k) const {
+    const auto& b = buf[std::size_t(thread[std::size_t(k)])];
+    const int s = start[std::size_t(k)];
+    const bool next = k + 1 < int(thread.size()) && thread[std::size_t(k + 1)] == thread[std::size_t(k)];
+    return {b.data() + s, b.data() + (next ? start[std::size_t(k + 1)] : int(b.size()))};
   }
-  if (dirty.empty()) return;
-  // New rows of the dirty set from the two-ring of the current lists, in contiguous blocks of
-  // the dirty list per thread (the result does not depend on the thread count). Candidates
-  // are deduplicated with a per-thread stamp array (stamp[k] == i + 1: k already seen for
-  // row i) instead of sorting the ~10× redundant two-ring; only the accepted partners (a few
-  // dozen) are sorted, by insertion.
-  const int nd = int(dirty.size());
-  const int nt = omp_get_max_threads();
-  std::vector<std::vector<int>> buf(static_cast<std::size_t>(nt));
-  std::vector<int> rowStart(std::size_t(nd) + 1, 0), rowThread(std::size_t(nd), 0);
+};
+
+NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::span<const Vec2> x,
+                    std::span<const Metric2> m, double radius) {
+  const int n = old.size(), nd = int(rows.size());
+  NewRows r;
+  r.buf.resize(static_cast<std::size_t>(omp_get_max_threads()));
+  r.start.assign(std::size_t(nd), 0);
+  r.thread.assign(std::size_t(nd), 0);
   const double r2 = radius * radius;
-  const AdjacencyLists& old = lists;
 #pragma omp parallel
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
     std::vector<int> stamp(lo < hi ? std::size_t(n) : 0, 0);
-    auto& out = buf[std::size_t(t)];
+    auto& out = r.buf[std::size_t(t)];
     for (int k = lo; k < hi; ++k) {
-      const int i = dirty[std::size_t(k)];
+      const int i = rows[std::size_t(k)];
       const int mk = i + 1;
       stamp[i] = mk;
       const std::size_t start = out.size();
-      rowStart[std::size_t(k)] = int(start);
-      rowThread[std::size_t(k)] = t;
+      r.start[std::size_t(k)] = int(start);
+      r.thread[std::size_t(k)] = t;
       const Vec2 xi = x[i];
       const Metric2& mi = m[i];
       auto test = [&](int c) {
@@ -163,40 +157,135 @@ void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std
       }
     }
   }
-  auto newRow = [&](int k) {
-    const auto& b = buf[std::size_t(rowThread[std::size_t(k)])];
-    const int s = rowStart[std::size_t(k)];
-    const int e = k + 1 < nd && rowThread[std::size_t(k + 1)] == rowThread[std::size_t(k)] ? rowStart[std::size_t(k + 1)] : int(b.size());
-    return std::span<const int>(b.data() + s, b.data() + e);
-  };
-  // Same sizes (the common case: partners change rarely within the list radius): overwrite in
-  // place. Otherwise lay the rows out again.
+  return r;
+}
+
+/// Replaces the rows `rows[k]` (ascending) by row(k): in place when no length changes, else
+/// laid out again.
+template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const int> rows, RowFn&& row) {
+  const int n = lists.size(), nd = int(rows.size());
   bool sameSizes = true;
-  for (int k = 0; k < nd && sameSizes; ++k) sameSizes = int(newRow(k).size()) == int(old.neighbours(dirty[std::size_t(k)]).size());
+  for (int k = 0; k < nd && sameSizes; ++k) sameSizes = row(k).size() == lists.neighbours(rows[std::size_t(k)]).size();
   if (sameSizes) {
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < nd; ++k) {
-      const auto r = newRow(k);
-      std::copy(r.begin(), r.end(), lists.ids.begin() + lists.offsets[dirty[std::size_t(k)]]);
+      const auto r = row(k);
+      std::copy(r.begin(), r.end(), lists.ids.begin() + lists.offsets[rows[std::size_t(k)]]);
     }
     return;
   }
-  std::vector<int> rowSize(static_cast<std::size_t>(n)), slot(static_cast<std::size_t>(n), -1);
-  for (int i = 0; i < n; ++i) rowSize[std::size_t(i)] = lists.offsets[i + 1] - lists.offsets[i];
-  for (int k = 0; k < nd; ++k) {
-    slot[std::size_t(dirty[std::size_t(k)])] = k;
-    rowSize[std::size_t(dirty[std::size_t(k)])] = int(newRow(k).size());
-  }
+  std::vector<int> slot(static_cast<std::size_t>(n), -1);
+  for (int k = 0; k < nd; ++k) slot[std::size_t(rows[std::size_t(k)])] = k;
   AdjacencyLists a;
   a.offsets.assign(std::size_t(n) + 1, 0);
-  for (int i = 0; i < n; ++i) a.offsets[i + 1] = a.offsets[i] + rowSize[std::size_t(i)];
+  for (int i = 0; i < n; ++i)
+    a.offsets[i + 1] = a.offsets[i] + int(slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]).size() : lists.neighbours(i).size());
   a.ids.resize(std::size_t(a.offsets[n]));
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
-    const auto r = slot[std::size_t(i)] >= 0 ? newRow(slot[std::size_t(i)]) : old.neighbours(i);
+    const auto r = slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]) : lists.neighbours(i);
     std::copy(r.begin(), r.end(), a.ids.begin() + a.offsets[i]);
   }
   lists = std::move(a);
+}
+
+/// Marks the nodes within two hops of the flagged ones (flags modified in place).
+void growTwoHops(const AdjacencyLists& lists, std::vector<char>& flag) {
+  const int n = lists.size();
+  for (int hop = 0; hop < 2; ++hop) {
+    std::vector<char> next(flag);
+    for (int i = 0; i < n; ++i)
+      if (flag[std::size_t(i)])
+        for (int j : lists.neighbours(i)) next[std::size_t(j)] = 1;
+    flag.swap(next);
+  }
+}
+
+} // namespace
+
+void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
+                             std::span<const char> moved) {
+  const int n = lists.size();
+  // Rows to recompute, ascending: those with a moved node within two hops (all if no mask).
+  std::vector<int> dirty;
+  if (moved.empty()) {
+    dirty.resize(std::size_t(n));
+    std::iota(dirty.begin(), dirty.end(), 0);
+  } else {
+    std::vector<char> mark(moved.begin(), moved.end());
+    growTwoHops(lists, mark);
+    for (int i = 0; i < n; ++i)
+      if (mark[std::size_t(i)]) dirty.push_back(i);
+  }
+  if (dirty.empty()) return;
+  const NewRows r = twoRingRows(lists, dirty, x, m, radius);
+  replaceRows(lists, dirty, [&](int k) { return r.rowOf(k); });
+}
+
+void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
+                            std::span<const int> centres) {
+  const int n = lists.size();
+  std::vector<char> mark(static_cast<std::size_t>(n), 0);
+  for (int c : centres) mark[std::size_t(c)] = 1;
+  growTwoHops(lists, mark);
+  std::vector<int> dirty;
+  for (int i = 0; i < n; ++i)
+    if (mark[std::size_t(i)]) dirty.push_back(i);
+  if (dirty.empty()) return;
+  const NewRows r = twoRingRows(lists, dirty, x, m, radius);
+  // Rows outside the recomputed set keep the relation symmetric: a partner gained (lost) by a
+  // recomputed row gains (loses) it too.
+  std::vector<std::pair<int, int>> gain, lose;  // (outside row, partner)
+  for (int k = 0; k < int(dirty.size()); ++k) {
+    const int a = dirty[std::size_t(k)];
+    const auto nr = r.rowOf(k), orow = lists.neighbours(a);
+    for (int b : nr)
+      if (!mark[std::size_t(b)] && !std::binary_search(orow.begin(), orow.end(), b)) gain.push_back({b, a});
+    for (int b : orow)
+      if (!mark[std::size_t(b)] && !std::binary_search(nr.begin(), nr.end(), b)) lose.push_back({b, a});
+  }
+  std::vector<int> rows = dirty;
+  std::vector<std::vector<int>> outside;
+  if (!gain.empty() || !lose.empty()) {
+    std::sort(gain.begin(), gain.end());
+    std::sort(lose.begin(), lose.end());
+    std::vector<int> touched;
+    for (const auto& g : gain) touched.push_back(g.first);
+    for (const auto& l : lose) touched.push_back(l.first);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (int b : touched) {
+      std::vector<int> row;
+      const auto o = lists.neighbours(b);
+      const auto g0 = std::lower_bound(gain.begin(), gain.end(), std::pair<int, int>{b, -1});
+      auto g1 = g0;
+      while (g1 != gain.end() && g1->first == b) ++g1;
+      const auto l0 = std::lower_bound(lose.begin(), lose.end(), std::pair<int, int>{b, -1});
+      auto l1 = l0;
+      while (l1 != lose.end() && l1->first == b) ++l1;
+      for (int v : o) {
+        bool lost = false;
+        for (auto it = l0; it != l1 && !lost; ++it) lost = it->second == v;
+        if (!lost) row.push_back(v);
+      }
+      for (auto it = g0; it != g1; ++it) row.push_back(it->second);
+      std::sort(row.begin(), row.end());
+      outside.push_back(std::move(row));
+    }
+    rows.insert(rows.end(), touched.begin(), touched.end());
+  }
+  // rows: dirty (ascending) then touched (ascending, disjoint from dirty); sort a permutation.
+  std::vector<int> order(rows.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int p, int q) { return rows[std::size_t(p)] < rows[std::size_t(q)]; });
+  std::vector<int> sortedRows(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) sortedRows[k] = rows[std::size_t(order[k])];
+  const int nd = int(dirty.size());
+  replaceRows(lists, sortedRows, [&](int k) -> std::span<const int> {
+    const int o = order[std::size_t(k)];
+    if (o < nd) return r.rowOf(o);
+    return outside[std::size_t(o - nd)];
+  });
 }
 
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,

@@ -278,6 +278,20 @@ double BubbleSystem::maxTravelSinceRefresh() const {
   return m;
 }
 
+std::vector<int> BubbleSystem::travellers(double threshold) const {
+  std::vector<int> ids;
+  for (int i = 0; i < int(disp_.size()); ++i)
+    if (disp_[i] > threshold) ids.push_back(i);
+  return ids;
+}
+
+void BubbleSystem::resetTravel(std::span<const int> ids) {
+  for (int i : ids) {
+    disp_[i] = 0.0;
+    if (i < int(refPos_.size())) refPos_[i] = nodes_.positions[i];
+  }
+}
+
 void BubbleSystem::clearMoved() {
   movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0);
   disp_.assign(std::size_t(nodes_.size()), 0.0);
@@ -311,6 +325,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     if (i < int(kicked_.size())) kicked_[m] = kicked_[i];
     if (i < int(movedSinceRefresh_.size())) movedSinceRefresh_[m] = movedSinceRefresh_[i];
     if (i < int(disp_.size())) disp_[m] = disp_[i];
+    if (i < int(refPos_.size())) refPos_[m] = refPos_[i];
     if (i < int(clear_.size())) clear_[m] = clear_[i];
     ++m;
   }
@@ -329,6 +344,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   kicked_.resize(m, 1);
   movedSinceRefresh_.resize(m, 1);
   disp_.resize(m, 0.0);
+  if (int(refPos_.size()) > m) refPos_.resize(m);
   clear_.resize(m, 0.0);
   return map;
 }
@@ -355,6 +371,7 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   movedSinceRefresh_.push_back(1);
   disp_.resize(n - 1, 0.0);
   disp_.push_back(0.0);
+  if (refPos_.size() + 1 == n) refPos_.push_back(x);  // travel counts from here
   clear_.resize(n, 0.0);
 }
 

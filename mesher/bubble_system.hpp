@@ -74,6 +74,10 @@ public:
   /// Largest metric distance of a bubble from where it was at clearMoved(): the two-ring
   /// refresh of the adjacency lists is exact while this stays below (radius − 1.5)/2.
   double maxTravelSinceRefresh() const;
+  /// Bubbles whose travel since the last clearMoved()/resetTravel() exceeds `threshold` (ascending).
+  std::vector<int> travellers(double threshold) const;
+  /// Travel of these bubbles counts again from their current positions (after a local refresh).
+  void resetTravel(std::span<const int> ids);
 
   /// Population edits (§3.4). Removal keeps the relative order of the survivors; returns
   /// old → new index map (−1 for removed). Only Interior nodes may be removed. Added bubbles

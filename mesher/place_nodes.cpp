@@ -204,23 +204,37 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       st.deleted += c.deleted;
       st.secondsPopulation += since(t);
       if (c.inserted + c.deleted > 0) {
-        quietPasses = 0;
         t = Clock::now();
         adj = patchAdjacency(adj, c.map, c.firstNew, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
-        sys.clearMoved();
         st.secondsAdjacency += since(t);
-        continue;
       }
-      if (++quietPasses >= 2 || done >= popUntil) populationSettled = true;
+      // Settled after two passes in a row that change at most 1 node in 10⁴ (large graded
+      // runs otherwise keep editing 1–3 nodes per pass, each edit jolting its neighbourhood,
+      // for hundreds of steps).
+      if (double(c.inserted + c.deleted) <= 1e-4 * sys.size()) {
+        if (++quietPasses >= 2) populationSettled = true;
+      } else {
+        quietPasses = 0;
+      }
+      if (c.inserted + c.deleted > 0) continue;
     }
     if (!populationSettled && done >= popUntil) populationSettled = true;
     // Refresh every k steps (§3.3), or earlier once some bubble has travelled far enough that
-    // a bubble outside its list could now be within force range.
-    if (done % std::max(1, options.adjacencyRefresh) == 0 ||
-        sys.maxTravelSinceRefresh() > 0.5 * (options.adjacencyRadius - 1.5)) {
+    // a bubble outside its list could now be within force range: then only around the bubbles
+    // that travelled more than half that far, unless they are many.
+    const double margin = 0.5 * (options.adjacencyRadius - 1.5);
+    const bool periodic = done % std::max(1, options.adjacencyRefresh) == 0;
+    if (periodic || sys.maxTravelSinceRefresh() > margin) {
       t = Clock::now();
-      refreshAdjacencyInPlace(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
-      sys.clearMoved();
+      std::vector<int> far;
+      if (!periodic) far = sys.travellers(0.5 * margin);
+      if (!periodic && 16 * far.size() < std::size_t(sys.size())) {
+        refreshAdjacencyAround(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, far);
+        sys.resetTravel(far);
+      } else {
+        refreshAdjacencyInPlace(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
+        sys.clearMoved();
+      }
       st.secondsAdjacency += since(t);
     }
   }

@@ -61,7 +61,7 @@ struct PlacementOptions {
   /// (paper disks: unaffected at 500, the line case stops early at 300); graded metrics from
   /// a solver may never reach `tolerance` (wave-front 12k remesh: residual 0.01–1 until
   /// maxSteps; stopped at ~680 steps instead of 2000 with the same mean/min element quality).
-  int stallSteps = 500;
+  int stallSteps = 150;
   long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
   std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
   int threads = 0;            ///< 0 = OpenMP default

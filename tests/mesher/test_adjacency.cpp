@@ -76,6 +76,34 @@ TEST(Adjacency, RefreshAfterSmallMovesEqualsRebuild) {
   EXPECT_EQ(r.ids, b.ids);
 }
 
+TEST(Adjacency, LocalRefreshAroundMovedBubblesEqualsRebuild) {
+  // A jittered packing; 40 bubbles (and only they) move by up to 0.1 of their size: the rows
+  // around them are recomputed and the rest patched symmetrically, which must give exactly
+  // the lists of a rebuild (rows far from every mover cannot have changed).
+  Cloud c;
+  std::mt19937_64 jr(5);
+  std::uniform_real_distribution<double> ju(-1, 1);
+  for (int a = 0; a < 50; ++a)
+    for (int b = 0; b < 40; ++b) {
+      const double h = 0.05 * (1 + 0.1 * std::sin(0.1 * a));
+      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * ju(jr), 0.05 * 0.866 * b + 0.005 * ju(jr)));
+      c.m.push_back(Metric2::fromSizes(h, 0.9 * h, 0.3));
+    }
+  AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
+  const AdjacencyLists before = a;
+  std::vector<int> movers;
+  for (int i = 7; i < int(c.x.size()); i += 50) {
+    movers.push_back(i);
+    c.x[i] += 0.005 * Vec2(ju(jr), ju(jr));
+  }
+  refreshAdjacencyAround(a, c.x, c.m, 1.7, movers);
+  const AdjacencyLists b = buildAdjacency(c.x, c.m, 1.7);
+  EXPECT_TRUE(a.isSymmetric());
+  EXPECT_EQ(a.offsets, b.offsets);
+  EXPECT_EQ(a.ids, b.ids);
+  EXPECT_NE(before.ids, b.ids);  // not vacuous: the moves changed some rows
+}
+
 TEST(Adjacency, IsSymmetricDetectsBrokenLists) {
   AdjacencyLists a;
   a.offsets = {0, 1, 1};
