@@ -13,6 +13,11 @@ void MetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out)
   for (std::size_t i = 0; i < points.size(); ++i) out[i] = at(points[i]);
 }
 
+void MetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const {
+  (void)hints;
+  evaluate(points, out);
+}
+
 // ---------------------------------------------------------------- analytic (muparser)
 
 struct AnalyticMetricField::Impl {
@@ -114,6 +119,18 @@ Metric2 BackgroundMetricField::interpolate(const PointLocator::Location& loc) co
 }
 
 Metric2 BackgroundMetricField::at(const Vec2& p) const { return interpolate(locator_->locate(p)); }
+
+void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const {
+  ABLMG_ASSERT(points.size() == out.size() && points.size() == hints.size(), "");
+  const long n = long(points.size());
+#pragma omp parallel for schedule(static) if (n > 256)
+  for (long i = 0; i < n; ++i) {
+    const int h = hints[std::size_t(i)];
+    const auto loc = locator_->locate(points[std::size_t(i)], h >= 0 && h < mesh_.numTriangles() ? h : -1);
+    hints[std::size_t(i)] = loc.triangle;
+    out[std::size_t(i)] = interpolate(loc);
+  }
+}
 
 void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out) const {
   int hint = -1;

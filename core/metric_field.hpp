@@ -31,6 +31,10 @@ public:
   virtual Metric2 at(const Vec2& p) const = 0;
   /// M at many points (out.size() == points.size()); override for speed.
   virtual void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const;
+  /// The same, with one location hint per point (in: where the point was last, −1 = unknown;
+  /// out: where it is now). Fields without a mesh ignore the hints. Used by the bubble
+  /// dynamics, whose bubbles move a little between evaluations.
+  virtual void evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const;
   /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
   virtual bool isConstant() const { return false; }
 };
@@ -67,6 +71,8 @@ public:
   BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics);
   Metric2 at(const Vec2& p) const override;
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
+  /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint.
+  void evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const override;
   const Mesh2& mesh() const { return mesh_; }
   const std::vector<Metric2>& metrics() const { return metrics_; }
 

@@ -225,9 +225,11 @@ void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std
 void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
                             std::span<const int> centres) {
   const int n = lists.size();
+  // Only the centres' rows: a pair of two other bubbles has not moved by more than their two
+  // travels, which the caller keeps within the list margin; pairs with a centre are re-tested
+  // here and mirrored into the partner's row below.
   std::vector<char> mark(static_cast<std::size_t>(n), 0);
   for (int c : centres) mark[std::size_t(c)] = 1;
-  growTwoHops(lists, mark);
   std::vector<int> dirty;
   for (int i = 0; i < n; ++i)
     if (mark[std::size_t(i)]) dirty.push_back(i);

@@ -40,10 +40,11 @@ void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> positi
 /// survivors are remapped; each new bubble is searched in a bucket grid with the radius that
 /// bounds every partner (radius·√2·max h1), and linked both ways. Equal to a rebuild when the
 /// survivors have not moved since `old` was built. O(N) with a small constant.
-/// Local refresh around bubbles that travelled far (`centres`): the rows within two hops of
-/// them are recomputed from the two-ring, and rows outside gain or lose the changed pairs so
-/// that the relation stays symmetric. The dynamics uses it when a few bubbles outrun the list
-/// margin (graded metrics: a global refresh every ~3 steps otherwise).
+/// Local refresh for bubbles that travelled far (`centres`, ascending): their rows are
+/// recomputed from the two-ring, and every other row gains or loses the changed pairs so that
+/// the relation stays symmetric. Exact for all pairs as long as every other bubble moved less
+/// than half the list margin (the caller's travel bookkeeping). The dynamics uses it when some
+/// bubbles outrun the margin (graded metrics: otherwise a global refresh every ~3 steps).
 void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> positions, std::span<const Metric2> metrics,
                             double radius, std::span<const int> centres);
 

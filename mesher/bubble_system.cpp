@@ -76,8 +76,9 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
     return;
   }
   const int n = nodes_.size();
+  hint_.resize(std::size_t(n), -1);
   if (all || int(evalPos_.size()) != n) {
-    field.evaluate(nodes_.positions, metrics_);
+    field.evaluate(nodes_.positions, metrics_, hint_);
     evalPos_ = nodes_.positions;
     return;
   }
@@ -88,11 +89,16 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   if (stale.empty()) return;
   std::vector<Vec2> pts(stale.size());
   std::vector<Metric2> ms(stale.size());
-  for (std::size_t k = 0; k < stale.size(); ++k) pts[k] = nodes_.positions[stale[k]];
-  field.evaluate(pts, ms);
+  std::vector<int> hs(stale.size());
+  for (std::size_t k = 0; k < stale.size(); ++k) {
+    pts[k] = nodes_.positions[stale[k]];
+    hs[k] = hint_[stale[k]];
+  }
+  field.evaluate(pts, ms, hs);
   for (std::size_t k = 0; k < stale.size(); ++k) {
     metrics_[stale[k]] = ms[k];
     evalPos_[stale[k]] = pts[k];
+    hint_[stale[k]] = hs[k];
   }
 }
 
@@ -321,6 +327,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     force_[m] = force_[i];
     metrics_[m] = metrics_[i];
     if (i < int(evalPos_.size())) evalPos_[m] = evalPos_[i];
+    if (i < int(hint_.size())) hint_[m] = hint_[i];
     if (i < int(active_.size())) active_[m] = active_[i];
     if (i < int(kicked_.size())) kicked_[m] = kicked_[i];
     if (i < int(movedSinceRefresh_.size())) movedSinceRefresh_[m] = movedSinceRefresh_[i];
@@ -340,6 +347,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   force_.resize(m);
   metrics_.resize(m);
   if (int(evalPos_.size()) > m) evalPos_.resize(m);
+  if (int(hint_.size()) > m) hint_.resize(m);
   active_.resize(m, 1);
   kicked_.resize(m, 1);
   movedSinceRefresh_.resize(m, 1);

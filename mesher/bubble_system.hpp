@@ -110,6 +110,7 @@ private:
   double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
   std::vector<Metric2> metrics_;
   std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated
+  std::vector<int> hint_;      ///< location hint of bubble i in the metric field (MetricField::evaluate)
   bool metricsConstant_ = false;
 };
 

@@ -220,15 +220,16 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     }
     if (!populationSettled && done >= popUntil) populationSettled = true;
     // Refresh every k steps (§3.3), or earlier once some bubble has travelled far enough that
-    // a bubble outside its list could now be within force range: then only around the bubbles
-    // that travelled more than half that far, unless they are many.
+    // a bubble outside its list could now be within force range: then only the rows of the
+    // bubbles that travelled more than half that far (unless they are many), so that every
+    // pair of the others has moved less than the margin.
     const double margin = 0.5 * (options.adjacencyRadius - 1.5);
     const bool periodic = done % std::max(1, options.adjacencyRefresh) == 0;
     if (periodic || sys.maxTravelSinceRefresh() > margin) {
       t = Clock::now();
       std::vector<int> far;
       if (!periodic) far = sys.travellers(0.5 * margin);
-      if (!periodic && 16 * far.size() < std::size_t(sys.size())) {
+      if (!periodic && 4 * far.size() < std::size_t(sys.size())) {
         refreshAdjacencyAround(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, far);
         sys.resetTravel(far);
       } else {

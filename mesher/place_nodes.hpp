@@ -48,7 +48,7 @@ struct PlacementOptions {
   double damping = 0.4;       ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
-  int adjacencyRefresh = 20;  ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
+  int adjacencyRefresh = 100; ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
   int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
   /// Convergence: stop when the residual (largest net force |f_i|_{M_i}, metric units; see
   /// bubble_system.hpp) has dropped below max(tolerance, relativeTolerance × initial residual),
