@@ -87,7 +87,14 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
     if (onCycle) onCycle(CycleData{report.cycles.back(), current.mesh, current.metric, sol.u, err, next});
     if (last) break;
     t0 = Clock::now();
-    current = remesh(problem.domain, current.mesh, std::move(next), options.mesh);
+    mesher::MeshOptions meshOptions = options.mesh;
+    if (options.warmStart) {
+      std::vector<char> onBoundary(std::size_t(current.mesh.numVertices()), 0);
+      for (const auto& e : current.mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
+      for (int v = 0; v < current.mesh.numVertices(); ++v)
+        if (!onBoundary[std::size_t(v)]) meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
+    }
+    current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
     tMesh = since(t0);
   }
 

@@ -47,6 +47,9 @@ struct AdaptOptions {
   int errorDegree = 8;                ///< quadrature degree of the error norms (fem/error_norms.hpp)
   /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.
   double stopL2 = 0, stopH1 = 0;
+  /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
+  /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
+  bool warmStart = false;
 };
 
 /// Throws InputError naming the field and value.

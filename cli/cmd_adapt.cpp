@@ -2,7 +2,7 @@
 //
 //   ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
 //               [--p 2|1|inf] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
-//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
+//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
@@ -116,6 +116,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.stopL2 = parseNumber(value(), "adapt: --stop-l2");
     } else if (key == "--stop-h1") {
       a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
+    } else if (key == "--warm-start") {
+      a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
     } else if (key == "--medit") {
       a.medit = parseOnOff(value(), "adapt: --medit");
     } else if (key == "--out-dir") {
@@ -123,7 +125,7 @@ Args parseArgs(const std::vector<std::string>& args) {
     } else {
       ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
                                                        << "' (valid: --problem --param --cycles --target-vertices --p --hgrad "
-                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --uniform --vtu --medit --out-dir)");
+                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --uniform --vtu --medit --out-dir)");
     }
   }
   ABLMG_REQUIRE(!a.problem.empty(), "adapt: --problem NAME is required");
@@ -230,6 +232,7 @@ int runAdapt(const std::vector<std::string>& argv) {
                   {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
                   {"max_anisotropy", a.options.metric.maxAnisotropy},
                   {"hgrad", a.options.hgrad},
+                  {"warm_start", a.options.warmStart},
                   {"seed", a.options.mesh.placement.seed}};
   for (const auto& r : report.cycles)
     j["cycles"].push_back({{"cycle", r.cycle},        {"vertices", r.vertices},   {"triangles", r.triangles},

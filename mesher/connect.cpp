@@ -295,7 +295,6 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
 } // namespace
 
 ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
-  (void)domain;  // the boundary is the polygon through placement.boundaryEdges
   const auto& pos = placement.nodes.positions;
   const auto& met = placement.metrics;
   const int n = int(pos.size());
@@ -316,11 +315,17 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     un.vertices = pos;
     un.triangles = consistent;
     un.boundaryEdges = placement.boundaryEdges;
-    double polygonArea = 0;
-    for (const auto& e : placement.boundaryEdges) polygonArea += 0.5 * cross(pos[e.a], pos[e.b]);
-    const bool ok = un.validate(polygonArea, 1e-9).ok;
-    st.secondsRepair += since(t0);
+    double area = 0;  // what the mesh must cover (as meshDomain checks it)
+    bool smooth = false;
+    for (const auto& loop : domain.loops()) smooth = smooth || loop.smooth;
+    if (smooth)
+      for (const auto& e : placement.boundaryEdges) area += 0.5 * cross(pos[e.a], pos[e.b]);
+    else
+      area = domain.area();
+    const bool ok = un.validate(area, 1e-9).ok;
+    result.secondsValidate = since(t0);
     if (ok) {
+      result.validated = true;
       result.mesh = std::move(un);
       result.nodeOfVertex.resize(n);
       std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);

@@ -54,6 +54,10 @@ struct ConnectResult {
   Mesh2 mesh;                     ///< valid (Mesh2::validate)
   std::vector<int> nodeOfVertex;  ///< mesh vertex → placement node (identity unless droppedNodes > 0)
   ConnectStats stats;
+  /// The union of the local meshes passed Mesh2::validate against the domain's area (polygonal
+  /// loops) or the boundary polygon's (smooth loops) and is the mesh: meshDomain need not check again.
+  bool validated = false;
+  double secondsValidate = 0;  ///< time of that check
 };
 
 /// Connects the placed nodes. Throws ablmg::Error if the boundary cannot be recovered (a node

@@ -250,7 +250,7 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
 }
 
 void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, double spacingHint,
-                        const InteriorPlacementOptions& options) {
+                        const InteriorPlacementOptions& options, std::span<const Vec2> seeds) {
   const auto [lo, hi] = geo.boundingBox();
   BucketGrid grid(lo, hi, std::max(spacingHint, 1e-12 * (hi - lo).norm()), 1L << 23);
   grid.clearIncremental(nodes.size() * 4);
@@ -295,10 +295,7 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   std::vector<Vec2> dirs;
   for (int k = 0; k < 6; ++k) dirs.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
   std::vector<int> queue;
-  for (const Vec2& probe : probes) {
-    const Metric2 mp = metricAt(probe);
-    if (!acceptable(probe, mp)) continue;
-    queue.assign(1, add(probe, mp));
+  auto grow = [&] {
     for (std::size_t head = 0; head < queue.size(); ++head) {
       const int p = queue[head];
       const Vec2 x = nodes.positions[p];
@@ -309,6 +306,22 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
         if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));
       }
     }
+  };
+  // Warm start: the seeds that fit (same spacing rules as lattice points), then lattice
+  // growth from each of them into the gaps they leave.
+  if (!seeds.empty()) {
+    std::vector<Metric2> sm(seeds.size());
+    if (constant) std::fill(sm.begin(), sm.end(), m0);
+    else metric.evaluate(seeds, sm);
+    for (std::size_t k = 0; k < seeds.size(); ++k)
+      if (acceptable(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
+    grow();
+  }
+  for (const Vec2& probe : probes) {
+    const Metric2 mp = metricAt(probe);
+    if (!acceptable(probe, mp)) continue;
+    queue.assign(1, add(probe, mp));
+    grow();
   }
 }
 

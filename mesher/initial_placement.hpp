@@ -23,6 +23,7 @@
 #include "core/metric_field.hpp"
 #include "mesher/node_set.hpp"
 
+#include <span>
 #include <vector>
 
 namespace ablmg::mesher {
@@ -75,8 +76,11 @@ struct InteriorPlacementOptions {
 
 /// Interior nodes of §3.1 (step 3), appended to `nodes` (which holds the boundary nodes).
 /// `spacingHint` = expected typical node spacing (coordinate units), sizes the bucket grid.
+/// `seeds` (warm start, e.g. the previous mesh's vertices): taken first, in order, where they
+/// pass the same tests as lattice points; the lattice then grows from them into the gaps.
 void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
-                        double spacingHint, const InteriorPlacementOptions& options = {});
+                        double spacingHint, const InteriorPlacementOptions& options = {},
+                        std::span<const Vec2> seeds = {});
 
 /// ∫Ω √det M dA (the domain's area in metric space) by midpoint quadrature on a g×g grid
 /// over the bounding box (exact area × √det M for a constant field).

@@ -4,27 +4,25 @@
 ///   initial placement (§3.1) → [ dynamics, eq. (5)–(8) (§3.2) ↔ population control, eq. (9)
 ///   (§3.4) ] with adjacency lists (§3.3) → stop rule → PlacementResult
 ///
-/// Schedule: population passes (population.hpp) every 10 steps, each after an adjacency
-/// refresh, until two passes in a row change nothing (or 60 % of maxSteps); the run stops when
-/// the residual < tolerance after that, or when the residual has not halved for stallSteps
-/// steps (stats.stalled), or at maxSteps. Boundary nodes are placed once (equal metric length
-/// per piece between corners) and keep their count; only interior bubbles are inserted/deleted.
+/// Schedule: population passes (population.hpp) every 10 steps until two passes in a row
+/// change at most 1 node in 10⁴ (or 60 % of maxSteps); the run stops when the residual has
+/// dropped below max(tolerance, relativeTolerance × initial) with every bubble awake, or when
+/// it has not halved for stallSteps steps (stats.stalled: graded metrics from a solver, where a
+/// few bubbles keep jolting), or at maxSteps. Boundary nodes are placed once (equal metric
+/// length per piece between corners) and keep their count; only interior bubbles are edited.
 ///
-/// Measured (Domain::disk({0,0},10), the three §4.3 metrics, defaults, 1 thread): final count
-/// vs N* −1.8 % / −3.7 % / −1.1 %; interior nearest-neighbour metric distance in
-/// [0.85, 1.15] for 99.8 % / 98.0 % / 97.6 %; residual drop ×438 / ×808 / ×606 in 823 / 1277 /
-/// 860 steps; boundary edges of metric length 1.000–1.001 (tests/mesher/test_place_nodes.cpp).
+/// Adjacency upkeep (§3.3): lists of radius 1.7 are exact for the force and eq. (9) (both end
+/// at w = 1.5) while no pair has closed in by more than 0.2, so each bubble's travel since its
+/// row was last computed is tracked; when one exceeds 0.1 the rows of the bubbles that
+/// travelled more than 0.05 are recomputed and mirrored (adjacency.hpp), a full refresh when
+/// they are more than a quarter of all; plus a full refresh every adjacencyRefresh steps.
 ///
-/// Early stopping (issue 7): `tolerance` trades steps for packing quality: on the constant
-/// metric at 10⁵ nodes, 1e-3 takes ~980 steps, 1e-2 ~390 (bench/bench_place_nodes.cpp).
-///
-/// Speed (issue 7; 1 thread, CPU seconds on the shared 2-core machine, bench/bench_place_nodes
-/// with tol 1e-2): constant metric on the radius-10 disk, 10⁵ nodes 2.6 s (3.7 s before the
-/// issue-7 work), 10⁶ nodes 19.9 s (29.0 s), 387 / 589 steps, 36 % / 13 % of the bubbles awake per
-/// step. Wave-front 12k remesh (`ablmg adapt --problem wavefront --target-vertices 3000,12000`):
-/// 2.8 s (13.2 s: it ran to maxSteps; the stall rule stops it at ~680 steps, same quality).
-/// On a loaded machine OpenMP's default busy-wait makes 2 threads far slower than 1 (seconds
-/// per run lost in barriers); OMP_WAIT_POLICY=passive avoids that.
+/// Speed (issue 7; README "Speed" has the figures and commands): the dynamics parameters
+/// c = 0.4, Δt = 0.45 (were 1.0, 0.3) and the active set (bubble_system.hpp) make a constant
+/// metric converge (×100) in about 100 steps at 4·10³ nodes and about 220 at 5·10⁵; the
+/// 100× criterion instead of an absolute 1e-3 halves the steps again at 5·10⁵ nodes with the
+/// same edge-length statistics (99.7 % within ±10 %). On a loaded machine OpenMP's default
+/// busy-wait makes 2 threads far slower than 1; OMP_WAIT_POLICY=passive avoids that.
 ///
 /// Deterministic: same domain, metric and options (seed) ⇒ bit-identical result, for any
 /// number of threads (no floating reductions across threads; nothing random is drawn).
@@ -41,10 +39,13 @@ struct PlacementOptions {
   double k0 = 1.0;            ///< force constant of eq. (7), paper §6
   double mass = 1.0;          ///< m of eq. (5), paper §6
   /// c and Δt: the paper's §6 values are c = 3.8429, Δt = 0.02. Our forces act in metric
-  /// units (bubble_system.hpp), where one pair has stiffness |f'(1)| = k0 and forward Euler is
-  /// stable up to Δt ≈ 0.5; with the paper's values the disk cases of §4.3 reduced the largest
-  /// force only ×3–5 in 400 steps (over-damped soft modes, tiny steps), with c = 1, Δt = 0.3
-  /// ×600–850 in ≤ 1400 steps. Set damping = 3.8429, timeStep = 0.02 for the paper's run.
+  /// units (bubble_system.hpp), where one pair has stiffness |f'(1)| = k0 and the semi-implicit
+  /// Euler step is stable up to Δt ≈ 0.6 for a hexagonal packing; with the paper's values the
+  /// disk cases of §4.3 reduced the largest force only ×3–5 in 400 steps (over-damped soft
+  /// modes, tiny steps). Swept on the four paper cases (disks + eq. 4) at a ×100 target:
+  /// (c, Δt) = (1, 0.3) 329–692 steps, (0.6, 0.45) 178–421, (0.4, 0.45) 99–210, (0.25, 0.3)
+  /// 179–355, with the same or better edge statistics. Set damping = 3.8429, timeStep = 0.02
+  /// for the paper's own run.
   double damping = 0.4;       ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
@@ -57,15 +58,18 @@ struct PlacementOptions {
   double tolerance = 1e-3;
   double relativeTolerance = 1e-2;
   /// Stall rule (0 = off): stop when the residual has not halved within this many steps
-  /// (stats.stalled). Converging runs halve it every ~100 steps, with plateaus of up to ~450
-  /// (paper disks: unaffected at 500, the line case stops early at 300); graded metrics from
-  /// a solver may never reach `tolerance` (wave-front 12k remesh: residual 0.01–1 until
-  /// maxSteps; stopped at ~680 steps instead of 2000 with the same mean/min element quality).
+  /// (stats.stalled). The paper disks halve it every ≤ 60 steps and are unaffected; adaptive
+  /// metrics (a wave-front remesh to 10⁵ vertices: residual 2.2 → 0.8 and no further) stop
+  /// after ~170 steps with the quality they would have after 600 (ring metric at 4·10⁴ nodes:
+  /// 90.5 % of edges within ±10 % after 263 steps, 90.7 % after 576).
   int stallSteps = 150;
   long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
   std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
   int threads = 0;            ///< 0 = OpenMP default
   bool bubblesOnly = false;   ///< informational: callers that only want the packing
+  /// Warm start (issue 11): interior seed positions, e.g. the previous mesh's vertices in an
+  /// adaptive loop; those that fit the metric's spacing replace lattice points (empty = cold).
+  std::vector<Vec2> warmStart;
 };
 
 struct PlacementStats {

@@ -226,3 +226,18 @@ INSTANTIATE_TEST_SUITE_P(Section43, PaperDisk,
                          ::testing::Values(DiskCase{"0.5", "0.2", "pi/4"},
                                            DiskCase{"0.15*abs(sqrt(x^2+y^2)-6)+0.2", "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0"},
                                            DiskCase{"0.1*abs(y)+0.2", "0.5*(0.1*abs(y)+0.2)", "0"}));
+
+TEST(PlaceNodes, WarmStartFromConvergedNodesNeedsFewSteps) {
+  // Seeds = the interior nodes of a converged packing for the same metric: nearly all of them
+  // are taken, so the dynamics has almost nothing left to do (a cold start needs ~200 steps).
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, "0.1*abs(y)+0.2", "0.5*(0.1*abs(y)+0.2)", "0");
+  const Domain disk = Domain::disk({0, 0}, 10);
+  const PlacementResult cold = placeNodes(disk, m);
+  PlacementOptions o;
+  for (int i = 0; i < cold.nodes.size(); ++i)
+    if (cold.nodes.kinds[i] == NodeKind::Interior) o.warmStart.push_back(cold.nodes.positions[i]);
+  const PlacementResult warm = placeNodes(disk, m, o);
+  EXPECT_NEAR(double(warm.stats.initialNodes), double(cold.stats.finalNodes), 0.01 * cold.stats.finalNodes);
+  EXPECT_LT(warm.stats.steps, cold.stats.steps / 2);
+  EXPECT_GE(fractionIn(nearestInterior(warm), 0.85, 1.15), 0.95);
+}
