@@ -34,7 +34,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -hmin H, -hmax H clamp the metric sizes h1, h2 to [hmin, hmax]
   -hgrad G         size gradation β > 1 (metric-space, adapt/gradation.hpp), applied on the
                    input mesh after clamping; default 1.3 as MMG; -1 disables
-  -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1)
+  -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
+                   >= 2 also the time of every phase (read, gradation, placement, connection, write)
   --seed N         placement seed (default 1)
   -h, --help       this text
 )";
@@ -151,6 +152,9 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
+  using Clock = std::chrono::steady_clock;
+  const auto tRead = Clock::now();
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line).
   Mesh2 mesh = io::readMesh(in);
   std::vector<Metric2> metrics = io::readSol(sol, mesh.numVertices());
@@ -165,10 +169,13 @@ int runRemesh(const std::vector<std::string>& args) {
       ++clamped;
     }
   }
+  const double secondsRead = since(tRead);
   // 3. Gradation (sizes grow by at most ≈ hgrad per unit metric length along the input edges).
+  const auto tGrad = Clock::now();
   adapt::GradationStats grad;
   if (hgrad > 1) grad = adapt::limitGradation(mesh, metrics, {.hgrad = hgrad});
   // 4. Domain from the boundary; the input mesh + metric are the background field.
+  const double secondsGradation = since(tGrad);
   const Domain domain = domainFromBoundary(mesh, in);
   const int inVertices = mesh.numVertices();
   const BackgroundMetricField field(std::move(mesh), std::move(metrics));
@@ -176,12 +183,24 @@ int runRemesh(const std::vector<std::string>& args) {
   auto r = mesher::meshDomain(domain, field, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // 5. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
+  const auto tWrite = Clock::now();
   io::writeMesh(out, r.mesh);
   try {
     io::writeSol(outSol, r.metric);
   } catch (...) {
     std::remove(out.c_str());
     throw;
+  }
+  const double secondsWrite = since(tWrite);
+  if (verbose >= 2) {
+    const auto& p = r.stats.placement;
+    const auto& c = r.stats.connect;
+    std::cout << "ablmg remesh: seconds: read " << secondsRead << ", gradation " << secondsGradation << ", placement "
+              << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
+              << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
+              << (p.stalled ? " (stalled)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
+              << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", validation "
+              << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
   }
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, " << r.mesh.numTriangles()
