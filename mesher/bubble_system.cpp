@@ -2,11 +2,34 @@
 
 #include "mesher/bubble_force.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::mesher {
+namespace {
+
+/// Ids i in [0, n) with pred(i), ascending, collected in parallel (contiguous blocks per
+/// thread, concatenated in order: the result does not depend on the thread count).
+template <class Pred> void collectIf(int n, std::vector<int>& out, Pred&& pred) {
+  const int nt = omp_get_max_threads();
+  std::vector<std::vector<int>> part(static_cast<std::size_t>(nt));
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
+    auto& v = part[std::size_t(t)];
+    for (int i = lo; i < hi; ++i)
+      if (pred(i)) v.push_back(i);
+  }
+  out.clear();
+  for (const auto& v : part) out.insert(out.end(), v.begin(), v.end());
+}
+
+} // namespace
 
 BubbleSystem::BubbleSystem(const DomainGeometry& geo, NodeSet nodes, std::vector<double> arcLength)
     : geo_(&geo), nodes_(std::move(nodes)), s_(std::move(arcLength)) {
@@ -84,8 +107,7 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   }
   std::vector<int> stale;
   const double t2 = lazyDistance * lazyDistance;
-  for (int i = 0; i < n; ++i)
-    if (metrics_[i].squaredLength(nodes_.positions[i] - evalPos_[i]) > t2) stale.push_back(i);
+  collectIf(n, stale, [&](int i) { return metrics_[i].squaredLength(nodes_.positions[i] - evalPos_[i]) > t2; });
   if (stale.empty()) return;
   std::vector<Vec2> pts(stale.size());
   std::vector<Metric2> ms(stale.size());
@@ -138,24 +160,30 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
     res_.assign(std::size_t(n), 0.0);
     resetForces_ = false;
   } else {
-    for (int i : list_) {
-      force_[i] = Vec2::Zero();
-      res_[i] = 0.0;
+    const int m = int(list_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < m; ++k) {
+      force_[list_[k]] = Vec2::Zero();
+      res_[list_[k]] = 0.0;
     }
   }
   active_.resize(std::size_t(n), 1);
-  list_.clear();
-  for (int i = 0; i < n; ++i)
-    if (active_[i] && nodes_.kinds[i] != NodeKind::Vertex) list_.push_back(i);
+  // The awake list: from updateActivity() when it is current, else from the flags.
+  if (nextList_.valid && int(nextList_.ids.size()) <= n) {
+    list_.swap(nextList_.ids);
+  } else {
+    collectIf(n, list_, [&](int i) { return active_[i] && nodes_.kinds[i] != NodeKind::Vertex; });
+  }
+  nextList_.valid = false;
   const int m = int(list_.size());
-#pragma omp parallel for schedule(static)
+  double residual = 0;
+#pragma omp parallel for schedule(static) reduction(max : residual)
   for (int k = 0; k < m; ++k) {
     const int i = list_[k];
     force_[i] = netForce(i, adj, p);
     res_[i] = std::sqrt(metrics_[i].squaredLength(force_[i]));
+    residual = std::max(residual, res_[i]);
   }
-  double residual = 0;
-  for (int i : list_) residual = std::max(residual, res_[i]);
   return residual;
 }
 
@@ -245,16 +273,21 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   moved_.resize(std::size_t(n), 1);
   kicked_.resize(std::size_t(n), 0);
   // Candidates: bubbles awake now, and the neighbours of every bubble that moved (or was kicked).
+  // Marked in parallel; concurrent stores of the same value go through atomic_ref.
   next_.assign(std::size_t(n), 0);
   auto mark = [&](int i) {
     if (!(moved_[i] || kicked_[i])) return;
-    next_[i] = 1;
-    for (int j : adj.neighbours(i)) next_[j] = 1;
+    std::atomic_ref<char>(next_[i]).store(1, std::memory_order_relaxed);
+    for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
   };
-  if (full)
+  if (full) {
+#pragma omp parallel for schedule(static)
     for (int i = 0; i < n; ++i) mark(i);
-  else
-    for (int i : advanced_) mark(i);
+  } else {
+    const int m = int(advanced_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < m; ++k) mark(advanced_[k]);
+  }
   long count = 0;
 #pragma omp parallel for schedule(static) reduction(+ : count)
   for (int i = 0; i < n; ++i) {
@@ -269,6 +302,9 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
     count += a;
   }
   active_.swap(next_);
+  // The next computeForces() takes this list instead of scanning the flags.
+  collectIf(n, nextList_.ids, [&](int i) { return active_[i] != 0; });
+  nextList_.valid = true;
   if (full) {
     kicked_.assign(std::size_t(n), 0);
     resetActivity_ = false;
@@ -304,9 +340,15 @@ void BubbleSystem::clearMoved() {
   refPos_ = nodes_.positions;
 }
 
-void BubbleSystem::wakeAll() { active_.assign(std::size_t(nodes_.size()), 1); }
+void BubbleSystem::wakeAll() {
+  active_.assign(std::size_t(nodes_.size()), 1);
+  nextList_.valid = false;
+}
 
-void BubbleSystem::structureChanged() { resetForces_ = resetMoved_ = resetActivity_ = true; }
+void BubbleSystem::structureChanged() {
+  resetForces_ = resetMoved_ = resetActivity_ = true;
+  nextList_.valid = false;
+}
 
 std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   structureChanged();

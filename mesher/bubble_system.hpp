@@ -98,6 +98,10 @@ private:
   std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
   std::vector<int> advanced_;  ///< list_ as of the last advance() (the only bubbles moved_ can flag)
   std::vector<char> next_;     ///< updateActivity's scratch
+  struct {
+    std::vector<int> ids;  ///< awake bubbles after updateActivity (ascending), for the next computeForces
+    bool valid = false;
+  } nextList_;
   bool resetForces_ = true, resetMoved_ = true, resetActivity_ = true;
   const DomainGeometry* geo_;
   NodeSet nodes_;
