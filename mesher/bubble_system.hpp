@@ -29,7 +29,7 @@
 namespace ablmg::mesher {
 
 struct DynamicsParams {
-  double k0 = 1.0, mass = 1.0, damping = 0.4, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
+  double k0 = 1.0, mass = 1.0, damping = 0.35, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
 };
 
 class BubbleSystem {

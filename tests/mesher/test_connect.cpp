@@ -180,8 +180,7 @@ TEST(Connect, SameMeshForOneAndTwoThreads) {
 }
 
 // The paper's disk of radius 10 with its three metrics (§4.3). Thresholds are the issue's
-// acceptance figures where we meet them; the line refinement's ±10% figure is 89.2% (the
-// issue asks 90%), the ring's 85.1% (asked 85%).
+// acceptance figures; measured 96.8 / 86.3 / 90.7 % within ±10 % (constant / ring / line).
 struct DiskCase {
   const char* name;
   const char* h1;
@@ -208,8 +207,8 @@ TEST_P(PaperDiskMesh, QualityAndEdgeLengths) {
 
 INSTANTIATE_TEST_SUITE_P(Section43, PaperDiskMesh,
                          ::testing::Values(DiskCase{"constant", "", 0.95},
-                                           DiskCase{"ring", "0.15*abs(sqrt(x^2+y^2)-6)+0.2", 0.84},
-                                           DiskCase{"line", "0.1*abs(y)+0.2", 0.88}),
+                                           DiskCase{"ring", "0.15*abs(sqrt(x^2+y^2)-6)+0.2", 0.85},
+                                           DiskCase{"line", "0.1*abs(y)+0.2", 0.90}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 // Paper eq. (4), M = (I + 4 x xᵀ)/h², h = 0.05 (the paraboloid z = x² + y²'s induced metric),
