@@ -197,9 +197,16 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     moved_.assign(std::size_t(n), 0);
     resetMoved_ = false;
   } else {
-    for (int i : advanced_) moved_[i] = 0;
+    const int a = int(advanced_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < a; ++k) moved_[advanced_[k]] = 0;
   }
-  advanced_ = list_;
+  advanced_.resize(list_.size());
+  {
+    const int m = int(list_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < m; ++k) advanced_[k] = list_[k];
+  }
   movedSinceRefresh_.resize(std::size_t(n), 1);
   disp_.resize(std::size_t(n), 0.0);
   clear_.resize(std::size_t(n), 0.0);
