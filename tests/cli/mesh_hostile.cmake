@@ -41,3 +41,14 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
                    -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_identical.cmake.in)
   set_tests_properties(cli.mesh_deterministic_across_threads PROPERTIES LABELS cli)
 endif()
+
+# A run killed mid-way leaves the previous outputs intact and no temporary file (issue 6).
+if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
+  ablmg_hostile_config(kill_small "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}}")
+  ablmg_hostile_config(kill_large "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.0007\"}}")
+  add_test(NAME cli.mesh_killed_run_leaves_outputs_intact
+           COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DSMALL=${_hdir}/kill_small.json
+                   -DLARGE=${_hdir}/kill_large.json -DOUT=${_hdir}/killed -DKILL_AFTER=1
+                   -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_killed.cmake.in)
+  set_tests_properties(cli.mesh_killed_run_leaves_outputs_intact PROPERTIES LABELS cli)
+endif()
