@@ -35,7 +35,7 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
 nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
   return {{"predictedNodes", s.predictedNodes}, {"initialNodes", s.initialNodes}, {"finalNodes", s.finalNodes},
           {"inserted", s.inserted},             {"deleted", s.deleted},           {"steps", s.steps},
-          {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled},           {"activeBubbleSteps", s.activeBubbleSteps},
+          {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled}, {"qualityPlateau", s.qualityPlateau},           {"activeBubbleSteps", s.activeBubbleSteps},
           {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},
           {"secondsInitial", s.secondsInitial}, {"secondsDynamics", s.secondsDynamics},
           {"secondsAdjacency", s.secondsAdjacency}, {"secondsPopulation", s.secondsPopulation}};

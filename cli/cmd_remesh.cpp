@@ -34,6 +34,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -hmin H, -hmax H clamp the metric sizes h1, h2 to [hmin, hmax]
   -hgrad G         size gradation β > 1 (metric-space, adapt/gradation.hpp), applied on the
                    input mesh after clamping; default 1.3 as MMG; -1 disables
+  Node placement stops early on a quality plateau (options.placement.plateauSteps = 50; see
+  mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
   -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, placement, connection, write)
   --seed N         placement seed (default 1)
@@ -142,6 +144,7 @@ int runRemesh(const std::vector<std::string>& args) {
   const std::string outSol = std::filesystem::path(out).replace_extension(".sol").string();
 
   mesher::MeshOptions options;
+  options.placement.plateauSteps = 50;  // early stop on a quality plateau (place_nodes.hpp), as in the adaptive loop
   options.placement.seed = std::uint64_t(seed);
   if (verbose >= 1) {
     const nlohmann::json resolved = {{"in", in}, {"sol", sol}, {"out", out}, {"outSol", outSol}, {"hmin", hmin},
@@ -198,7 +201,7 @@ int runRemesh(const std::vector<std::string>& args) {
     std::cout << "ablmg remesh: seconds: read " << secondsRead << ", gradation " << secondsGradation << ", placement "
               << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
               << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
-              << (p.stalled ? " (stalled)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
+              << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
               << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", validation "
               << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
   }

@@ -92,6 +92,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"adjacencyRefresh", &PlacementOptions::adjacencyRefresh},
       {"maxSteps", &PlacementOptions::maxSteps},
       {"stallSteps", &PlacementOptions::stallSteps},
+      {"plateauSteps", &PlacementOptions::plateauSteps},
       {"tolerance", &PlacementOptions::tolerance},
       {"relativeTolerance", &PlacementOptions::relativeTolerance},
       {"maxNodes", &PlacementOptions::maxNodes},
