@@ -257,7 +257,6 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       } else {
         quietPasses = 0;
       }
-      if (c.inserted + c.deleted > 0) continue;
     }
     if (!populationSettled && done >= popUntil) populationSettled = true;
     // Refresh every k steps (§3.3), or earlier once some bubble has travelled far enough that
