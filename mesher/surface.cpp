@@ -20,8 +20,9 @@ class FormulaSurface final : public ParametricSurface {
 public:
   using PointFn = std::function<Vec3(double, double)>;
   using DerivFn = std::function<std::array<Vec3, 2>(double, double)>;
-  FormulaSurface(std::string text, Domain domain, PointFn r, DerivFn dr)
-      : text_(std::move(text)), domain_(std::move(domain)), r_(std::move(r)), dr_(std::move(dr)) {}
+  FormulaSurface(std::string text, Domain domain, PointFn r, DerivFn dr, bool periodic = false)
+      : text_(std::move(text)), domain_(std::move(domain)), r_(std::move(r)), dr_(std::move(dr)), periodic_(periodic) {}
+  bool periodic() const override { return periodic_; }
   Vec3 point(const Vec2& uv) const override { return r_(uv.x(), uv.y()); }
   std::array<Vec3, 2> derivatives(const Vec2& uv) const override { return dr_(uv.x(), uv.y()); }
   const Domain& parameterDomain() const override { return domain_; }
@@ -32,6 +33,7 @@ private:
   Domain domain_;
   PointFn r_;
   DerivFn dr_;
+  bool periodic_;
 };
 
 class ExpressionSurface final : public ParametricSurface {
@@ -83,7 +85,8 @@ std::vector<std::string> builtinSurfaceList() {
           "sphere-patch  unit sphere (sin v cos u, sin v sin u, cos v)  (u,v) in [0,pi]x[pi/6,5pi/6]",
           "torus         ((1+0.3cos v)cos u, (1+0.3cos v)sin u, 0.3 sin v)  (u,v) in [0,3pi/2]^2 (seams not glued)",
           "cylinder      (cos u, sin u, v)                            (u,v) in [0,pi]x[0,2]",
-          "saddle        x=u, y=v, z=u^2-v^2                          (u,v) in [-1,1]^2"};
+          "saddle        x=u, y=v, z=u^2-v^2                          (u,v) in [-1,1]^2",
+          "torus-closed  the torus above over (u,v) in [0,2pi]^2, seams welded: a closed surface"};
 }
 
 std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
@@ -115,6 +118,19 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
           return std::array<Vec3, 2>{Vec3(-w * std::sin(u), w * std::cos(u), 0),
                                      Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
         });
+  if (name == "torus-closed")
+    return std::make_unique<FormulaSurface>(
+        builtinSurfaceList()[5], Domain::rectangle(0, 0, 2 * kPi, 2 * kPi),
+        [](double u, double v) {
+          const double w = 1 + 0.3 * std::cos(v);
+          return Vec3(w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v));
+        },
+        [](double u, double v) {
+          const double w = 1 + 0.3 * std::cos(v);
+          return std::array<Vec3, 2>{Vec3(-w * std::sin(u), w * std::cos(u), 0),
+                                     Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
+        },
+        true);
   if (name == "cylinder")
     return std::make_unique<FormulaSurface>(
         builtinSurfaceList()[3], Domain::rectangle(0, 0, kPi, 2),
@@ -126,7 +142,7 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
         [](double u, double v) { return Vec3(u, v, u * u - v * v); },
         [](double u, double v) { return std::array<Vec3, 2>{Vec3(1, 0, 2 * u), Vec3(0, 1, -2 * v)}; });
   throw InputError("surface: unknown built-in '" + name +
-                   "' (known: paper-fig16, sphere-patch, torus, cylinder, saddle; see `ablmg surface --list`)");
+                   "' (known: paper-fig16, sphere-patch, torus, torus-closed, cylinder, saddle; see `ablmg surface --list`)");
 }
 
 std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
@@ -174,6 +190,14 @@ SurfaceMesh mapToSurface(const Mesh2& parameterMesh, const ParametricSurface& su
     s.vertices.push_back(p);
   }
   s.triangles = parameterMesh.triangles;
+  if (surface.periodic() && !s.vertices.empty()) {
+    Vec3 lo = s.vertices.front(), hi = lo;
+    for (const auto& p : s.vertices) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    s = weldSeams(s, 1e-9 * (hi - lo).norm());
+  }
   return s;
 }
 
@@ -218,6 +242,63 @@ std::vector<double> surfaceEdgeLengths(const SurfaceMesh& mesh, const Metric3Fie
     len.push_back(std::sqrt(d.dot(M * d)));
   }
   return len;
+}
+
+SurfaceMesh weldSeams(const SurfaceMesh& mesh, double tolerance) {
+  const int n = int(mesh.vertices.size());
+  // Sort by x; candidates of a vertex are the following ones within tolerance in x.
+  std::vector<int> order(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) order[std::size_t(i)] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return mesh.vertices[std::size_t(a)].x() < mesh.vertices[std::size_t(b)].x() ||
+           (mesh.vertices[std::size_t(a)].x() == mesh.vertices[std::size_t(b)].x() && a < b);
+  });
+  std::vector<int> rep(static_cast<std::size_t>(n));  // union-find, each group's root its lowest index
+  for (int i = 0; i < n; ++i) rep[std::size_t(i)] = i;
+  auto find = [&](int i) {
+    while (rep[std::size_t(i)] != i) i = rep[std::size_t(i)] = rep[std::size_t(rep[std::size_t(i)])];
+    return i;
+  };
+  for (int k = 0; k < n; ++k) {
+    const int a = order[std::size_t(k)];
+    for (int q = k + 1; q < n; ++q) {
+      const int b = order[std::size_t(q)];
+      if (mesh.vertices[std::size_t(b)].x() - mesh.vertices[std::size_t(a)].x() > tolerance) break;
+      if ((mesh.vertices[std::size_t(b)] - mesh.vertices[std::size_t(a)]).norm() <= tolerance) {
+        const int ra = find(a), rb = find(b);
+        rep[std::size_t(std::max(ra, rb))] = std::min(ra, rb);
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) rep[std::size_t(i)] = find(i);
+  SurfaceMesh out;
+  std::vector<int> index(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < n; ++i)
+    if (rep[std::size_t(i)] == i) {
+      index[std::size_t(i)] = int(out.vertices.size());
+      out.vertices.push_back(mesh.vertices[std::size_t(i)]);
+    }
+  for (const auto& t : mesh.triangles) {
+    std::array<int, 3> w{};
+    for (int k = 0; k < 3; ++k) w[std::size_t(k)] = index[std::size_t(rep[std::size_t(t[std::size_t(k)])])];
+    if (w[0] != w[1] && w[1] != w[2] && w[0] != w[2]) out.triangles.push_back(w);
+  }
+  return out;
+}
+
+long countBoundaryEdges(const SurfaceMesh& mesh) {
+  std::vector<std::pair<int, int>> e;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) e.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  std::sort(e.begin(), e.end());
+  long single = 0;
+  for (std::size_t i = 0; i < e.size();) {
+    std::size_t j = i;
+    while (j < e.size() && e[j] == e[i]) ++j;
+    single += j - i == 1;
+    i = j;
+  }
+  return single;
 }
 
 std::string checkManifold(const SurfaceMesh& mesh) {

@@ -32,9 +32,12 @@ public:
   virtual std::array<Vec3, 2> derivatives(const Vec2& uv) const;
   virtual const Domain& parameterDomain() const = 0;
   virtual std::string description() const = 0;
+  /// True if r maps opposite sides of the parameter rectangle onto each other (a closed torus,
+  /// a full cylinder): the mapped mesh is then welded along those seams (weldSeams).
+  virtual bool periodic() const { return false; }
 };
 
-/// Names: paper-fig16, sphere-patch, torus, cylinder, saddle. Throws InputError otherwise.
+/// Names: paper-fig16, sphere-patch, torus, torus-closed, cylinder, saddle. Throws InputError otherwise.
 std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name);
 /// One line per built-in: name, formula, parameter domain.
 std::vector<std::string> builtinSurfaceList();
@@ -66,8 +69,15 @@ struct SurfaceMesh {
   double area() const;
 };
 
-/// Maps every vertex of the parameter mesh with r (same triangles).
+/// Maps every vertex of the parameter mesh with r (same triangles); for a periodic() surface
+/// the seams are then welded (weldSeams with a tolerance of 1e-9 × the bounding-box diagonal).
 SurfaceMesh mapToSurface(const Mesh2& parameterMesh, const ParametricSurface& surface);
+
+/// Merges vertices closer than `tolerance` in 3D (each into the lowest index of its group),
+/// renumbers, and drops triangles that became degenerate. The seam's nodes coincide because
+/// the boundary of the parameter rectangle is divided into equal metric lengths and r and M2
+/// are periodic, so opposite sides get the same subdivision (to round-off).
+SurfaceMesh weldSeams(const SurfaceMesh& mesh, double tolerance);
 
 /// Lee's quality α of each triangle (eqs. 19–20) under M3. Eq. (20) is read with M_i
 /// restricted to the triangle's plane (2×2, orthonormal basis) and with √det, so that a
@@ -80,5 +90,8 @@ std::vector<double> surfaceEdgeLengths(const SurfaceMesh& mesh, const Metric3Fie
 /// Every edge in ≤ 2 triangles and each interior edge used once in each direction (a
 /// consistently oriented manifold with boundary). Returns an empty string or the first problem.
 std::string checkManifold(const SurfaceMesh& mesh);
+
+/// Edges that lie in one triangle only (0 for a closed surface).
+long countBoundaryEdges(const SurfaceMesh& mesh);
 
 } // namespace ablmg::mesher

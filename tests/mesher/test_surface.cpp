@@ -90,9 +90,28 @@ TEST_P(BuiltinSurfaceMesh, ManifoldWithLeeQualityAndEdgeLengths) {
   EXPECT_GE(q.elements.min, 0.33);
   EXPECT_GE(q.edgeLengths.inSqrt2, 0.98);
 }
-INSTANTIATE_TEST_SUITE_P(Issue10, BuiltinSurfaceMesh, ::testing::Values("paper-fig16", "sphere-patch", "torus", "cylinder", "saddle"),
+INSTANTIATE_TEST_SUITE_P(Issue10, BuiltinSurfaceMesh, ::testing::Values("paper-fig16", "sphere-patch", "torus", "torus-closed", "cylinder", "saddle"),
                          [](const auto& info) {
                            std::string n = info.param;
                            for (char& c : n) if (c == '-') c = '_';
                            return n;
                          });
+
+// The closed torus: the parameter square's opposite sides are welded after mapping, so the
+// surface has no boundary edge and Euler characteristic V − E + F = 0; without the weld
+// (the same mesh mapped vertex by vertex) it would have a boundary and χ = 1 (a disk).
+TEST(Surface, ClosedTorusIsWeldedIntoATorus) {
+  const auto surface = makeBuiltinSurface("torus-closed");
+  ASSERT_TRUE(surface->periodic());
+  const Metric3Field m3 = isotropicMetric3(0.12);
+  const MeshResult r = meshDomain(surface->parameterDomain(), InducedMetricField(*surface, m3));
+  const SurfaceMesh s = mapToSurface(r.mesh, *surface);
+  EXPECT_EQ(checkManifold(s), "");
+  EXPECT_EQ(countBoundaryEdges(s), 0);
+  const long V = long(s.vertices.size()), F = long(s.triangles.size()), E = 3 * F / 2;
+  EXPECT_EQ(3 * F % 2, 0);
+  EXPECT_EQ(V - E + F, 0);
+  EXPECT_EQ(long(r.mesh.triangles.size()), F);  // welding merges vertices only
+  EXPECT_LT(V, r.mesh.numVertices());
+  EXPECT_NEAR(s.area(), 4 * std::numbers::pi * std::numbers::pi * 1.0 * 0.3, 0.02 * 4 * std::numbers::pi * std::numbers::pi * 0.3);
+}
