@@ -11,7 +11,9 @@
 // A surface config (every key but "surface" optional; unknown keys are errors naming the path):
 //   {"surface": "paper-fig16"                                   a built-in, or
 //    "surface": {"x": "u", "y": "v", "z": "cos(pi*(u^2+v^2))^2",  muparser in u, v (pi)
-//                "u": [-1, 1], "v": [-1, 1]},                     over [u0,u1]×[v0,v1]
+//                "u": [-1, 1], "v": [-1, 1],                      over [u0,u1]×[v0,v1];
+//                "weld": false},                                   true: weld the sides that r maps
+//                                                                  onto each other (periodic r)
 //    "h": 0.05, "seed": 1,
 //    "options": {"placement": {...}, "connect": {...}}}         as in `ablmg mesh` configs
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
@@ -119,8 +121,13 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
     const std::string w = path + ": surface";
     ABLMG_REQUIRE(sj.is_object(), w << ": expected a built-in name or an object {x, y, z, u, v}, got " << sj.type_name());
     for (const auto& [key, value] : sj.items())
-      ABLMG_REQUIRE(key == "x" || key == "y" || key == "z" || key == "u" || key == "v",
-                    w << ": unknown key '" << key << "' (valid: x, y, z, u, v)");
+      ABLMG_REQUIRE(key == "x" || key == "y" || key == "z" || key == "u" || key == "v" || key == "weld",
+                    w << ": unknown key '" << key << "' (valid: x, y, z, u, v, weld)");
+    bool weld = false;
+    if (sj.contains("weld")) {
+      ABLMG_REQUIRE(sj["weld"].is_boolean(), w << ".weld: expected true or false");
+      weld = sj["weld"].get<bool>();
+    }
     std::string e[3];
     const char* names[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
@@ -137,7 +144,7 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
       ABLMG_REQUIRE(std::isfinite(range[k][0]) && std::isfinite(range[k][1]) && range[k][0] < range[k][1],
                     w << "." << uv[k] << ": expected min < max, got [" << range[k][0] << ", " << range[k][1] << "]");
     }
-    s.surface = mesher::makeExpressionSurface(e[0], e[1], e[2], range[0][0], range[1][0], range[0][1], range[1][1], w);
+    s.surface = mesher::makeExpressionSurface(e[0], e[1], e[2], range[0][0], range[1][0], range[0][1], range[1][1], w, weld);
     s.name = std::filesystem::path(path).stem().string();
   }
   if (j.contains("h")) {
@@ -230,6 +237,8 @@ int runSurface(const std::vector<std::string>& args) {
   const mesher::MeshQuality q = mesher::surfaceQuality(s, m3);
   ABLMG_REQUIRE(q.valid, "surface: the 3D mesh is not a consistently oriented manifold: " << q.firstProblem);
   const std::vector<double> alpha = mesher::leeQuality(s, m3);
+  const long boundaryEdges = mesher::countBoundaryEdges(s);
+  const long welded = long(r.mesh.numVertices()) - long(s.vertices.size());  // seam vertices merged (periodic surfaces)
 
   std::vector<std::string> written;
   try {
@@ -242,7 +251,8 @@ int runSurface(const std::vector<std::string>& args) {
     if (!pngPath.empty()) { io::drawMesh(pngPath, r.mesh, alpha, "Lee quality"); written.push_back(pngPath); }
     if (!png3dPath.empty()) { io::drawSurface(png3dPath, s.vertices, s.triangles); written.push_back(png3dPath); }
     if (!jsonPath.empty()) {
-      json j = {{"options", optionsEcho}, {"seconds", seconds}, {"quality", mesher::toJson(q)}, {"outputs", written}};
+      json j = {{"options", optionsEcho}, {"seconds", seconds}, {"quality", mesher::toJson(q)},
+                {"boundary_edges", boundaryEdges}, {"welded_vertices", welded}, {"outputs", written}};
       io::writeFileAtomically(jsonPath, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
       written.push_back(jsonPath);
     }
@@ -251,7 +261,8 @@ int runSurface(const std::vector<std::string>& args) {
     throw;
   }
   std::cout << "ablmg surface: " << setup.name << ", h = " << setup.h << ": " << q.vertices << " vertices, " << q.triangles
-            << " triangles in " << seconds << " s; manifold: yes\n"
+            << " triangles in " << seconds << " s; manifold: yes; boundary edges: " << boundaryEdges
+            << (welded > 0 ? "; seams welded: " + std::to_string(welded) + " vertices merged" : std::string()) << "\n"
             << mesher::toText(q);
   for (const auto& w : written) std::cout << "  -> " << w << "\n";
   return 0;

@@ -39,8 +39,8 @@ private:
 class ExpressionSurface final : public ParametricSurface {
 public:
   ExpressionSurface(const std::string& x, const std::string& y, const std::string& z, Domain domain,
-                    const std::string& source)
-      : domain_(std::move(domain)), text_("x=" + x + ", y=" + y + ", z=" + z) {
+                    const std::string& source, bool periodic)
+      : domain_(std::move(domain)), text_("x=" + x + ", y=" + y + ", z=" + z), periodic_(periodic) {
     const std::string* e[3] = {&x, &y, &z};
     const char* names[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
@@ -64,10 +64,12 @@ public:
   }
   const Domain& parameterDomain() const override { return domain_; }
   std::string description() const override { return text_; }
+  bool periodic() const override { return periodic_; }
 
 private:
   Domain domain_;
   std::string text_;
+  bool periodic_;
   mutable double u_ = 0, v_ = 0;
   mu::Parser p_[3];
 };
@@ -147,8 +149,8 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
 
 std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
                                                          double u0, double v0, double u1, double v1,
-                                                         const std::string& source) {
-  return std::make_unique<ExpressionSurface>(x, y, z, Domain::rectangle(u0, v0, u1, v1), source);
+                                                         const std::string& source, bool periodic) {
+  return std::make_unique<ExpressionSurface>(x, y, z, Domain::rectangle(u0, v0, u1, v1), source, periodic);
 }
 
 Metric3Field isotropicMetric3(double h) {

@@ -41,10 +41,12 @@ public:
 std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name);
 /// One line per built-in: name, formula, parameter domain.
 std::vector<std::string> builtinSurfaceList();
-/// x(u,v), y(u,v), z(u,v) as muparser expressions over a rectangle [u0,u1]×[v0,v1].
+/// x(u,v), y(u,v), z(u,v) as muparser expressions over a rectangle [u0,u1]×[v0,v1];
+/// `periodic`: r maps opposite sides onto each other, weld them (ParametricSurface::periodic).
 std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y,
                                                          const std::string& z, double u0, double v0, double u1,
-                                                         double v1, const std::string& source = "surface");
+                                                         double v1, const std::string& source = "surface",
+                                                         bool periodic = false);
 
 /// The 3D metric field M3 (eq. 14); isotropic size h by default (eq. 17).
 using Metric3 = Eigen::Matrix3d;
