@@ -93,6 +93,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"maxSteps", &PlacementOptions::maxSteps},
       {"stallSteps", &PlacementOptions::stallSteps},
       {"plateauSteps", &PlacementOptions::plateauSteps},
+      {"plateauGain", &PlacementOptions::plateauGain},
       {"tolerance", &PlacementOptions::tolerance},
       {"relativeTolerance", &PlacementOptions::relativeTolerance},
       {"maxNodes", &PlacementOptions::maxNodes},

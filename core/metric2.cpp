@@ -80,8 +80,19 @@ Metric2 Metric2::logm() const {
 }
 
 Metric2 Metric2::expm() const {
-  const SymEig e = symEig(a_, b_, c_);
-  return fromEig(std::exp(e.l1), std::exp(e.l2), e.angle);
+  // Closed form for a symmetric 2×2 L = m·I + N (m = tr L / 2, N traceless with N² = δ² I):
+  // exp(L) = e^m (cosh δ · I + (sinh δ / δ) · N). No eigenvectors, so no atan2/sincos (this
+  // runs once per bubble per dynamics step under a background metric).
+  const double m = 0.5 * (a_ + c_), h = 0.5 * (a_ - c_);
+  const double delta = std::sqrt(h * h + b_ * b_);
+  const double em = std::exp(m);
+  if (!(delta > 1e-8)) {  // sinh δ / δ = 1 + δ²/6 + …; cosh δ = 1 + δ²/2 + …
+    const double s = em * (1 + delta * delta / 6), c = em * (1 + 0.5 * delta * delta);
+    return raw(c + s * h, s * b_, c - s * h);
+  }
+  const double ep = std::exp(delta), en = 1.0 / ep;
+  const double c = em * 0.5 * (ep + en), s = em * 0.5 * (ep - en) / delta;
+  return raw(c + s * h, s * b_, c - s * h);
 }
 
 Metric2 logEuclideanMean(std::span<const Metric2> metrics, std::span<const double> weights) {

@@ -11,17 +11,6 @@
 namespace ablmg::mesher {
 namespace {
 
-AdjacencyLists toCsr(std::vector<std::vector<int>>& rows) {
-  AdjacencyLists a;
-  const int n = int(rows.size());
-  a.offsets.assign(std::size_t(n) + 1, 0);
-  for (int i = 0; i < n; ++i) a.offsets[i + 1] = a.offsets[i] + int(rows[i].size());
-  a.ids.resize(std::size_t(a.offsets[n]));
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) std::copy(rows[i].begin(), rows[i].end(), a.ids.begin() + a.offsets[i]);
-  return a;
-}
-
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
 /// does not depend on the thread count). rowFn(i, out) appends row i to out.
@@ -95,6 +84,7 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
                                 double radius, std::span<const char> moved) {
   AdjacencyLists a = old;
   refreshAdjacencyInPlace(a, x, m, radius, moved);
+  a.compact();
   return a;
 }
 
@@ -160,17 +150,28 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   return r;
 }
 
-/// Replaces the rows `rows[k]` (ascending) by row(k): in place when no length changes, else
-/// laid out again.
+/// Slack given to every row when the lists are laid out again: a row may gain this many
+/// partners before the next re-layout (a refresh changes a row by one or two partners).
+constexpr int kRowSlack = 4;
+
+/// Replaces the rows `rows[k]` (ascending) by row(k): in place when every new row fits in its
+/// row's capacity (the usual case once the lists have slack), else all rows are laid out again
+/// with kRowSlack spare entries each. O(changed entries) in the first case, O(N) in the second.
 template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const int> rows, RowFn&& row) {
   const int n = lists.size(), nd = int(rows.size());
-  bool sameSizes = true;
-  for (int k = 0; k < nd && sameSizes; ++k) sameSizes = row(k).size() == lists.neighbours(rows[std::size_t(k)]).size();
-  if (sameSizes) {
+  bool fits = true;
+  for (int k = 0; k < nd && fits; ++k) {
+    const int i = rows[std::size_t(k)];
+    fits = int(row(k).size()) <= lists.offsets[i + 1] - lists.offsets[i];
+  }
+  if (fits) {
+    if (lists.ends.empty()) lists.ends.assign(lists.offsets.begin() + 1, lists.offsets.end());
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < nd; ++k) {
+      const int i = rows[std::size_t(k)];
       const auto r = row(k);
-      std::copy(r.begin(), r.end(), lists.ids.begin() + lists.offsets[rows[std::size_t(k)]]);
+      std::copy(r.begin(), r.end(), lists.ids.begin() + lists.offsets[i]);
+      lists.ends[i] = lists.offsets[i] + int(r.size());
     }
     return;
   }
@@ -178,9 +179,13 @@ template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const i
   for (int k = 0; k < nd; ++k) slot[std::size_t(rows[std::size_t(k)])] = k;
   AdjacencyLists a;
   a.offsets.assign(std::size_t(n) + 1, 0);
-  for (int i = 0; i < n; ++i)
-    a.offsets[i + 1] = a.offsets[i] + int(slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]).size() : lists.neighbours(i).size());
-  a.ids.resize(std::size_t(a.offsets[n]));
+  a.ends.resize(std::size_t(n));
+  for (int i = 0; i < n; ++i) {
+    const int len = int(slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]).size() : lists.neighbours(i).size());
+    a.ends[i] = a.offsets[i] + len;
+    a.offsets[i + 1] = a.ends[i] + kRowSlack;
+  }
+  a.ids.assign(std::size_t(a.offsets[n]), -1);
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     const auto r = slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]) : lists.neighbours(i);
@@ -236,18 +241,40 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   if (dirty.empty()) return;
   const NewRows r = twoRingRows(lists, dirty, x, m, radius);
   // Rows outside the recomputed set keep the relation symmetric: a partner gained (lost) by a
-  // recomputed row gains (loses) it too.
-  std::vector<std::pair<int, int>> gain, lose;  // (outside row, partner)
-  for (int k = 0; k < int(dirty.size()); ++k) {
-    const int a = dirty[std::size_t(k)];
-    const auto nr = r.rowOf(k), orow = lists.neighbours(a);
-    for (int b : nr)
-      if (!mark[std::size_t(b)] && !std::binary_search(orow.begin(), orow.end(), b)) gain.push_back({b, a});
-    for (int b : orow)
-      if (!mark[std::size_t(b)] && !std::binary_search(nr.begin(), nr.end(), b)) lose.push_back({b, a});
+  // recomputed row gains (loses) it too. Both rows are sorted: one merge walk per row, in
+  // contiguous blocks per thread (concatenated in order: independent of the thread count).
+  const int nd = int(dirty.size());
+  std::vector<std::vector<std::pair<int, int>>> gainOf(static_cast<std::size_t>(omp_get_max_threads())),
+      loseOf(gainOf.size());
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
+    auto& gain = gainOf[std::size_t(t)];
+    auto& lose = loseOf[std::size_t(t)];
+    for (int k = lo; k < hi; ++k) {
+      const int a = dirty[std::size_t(k)];
+      const auto nr = r.rowOf(k), orow = lists.neighbours(a);
+      std::size_t p = 0, q = 0;
+      while (p < nr.size() || q < orow.size()) {
+        if (q == orow.size() || (p < nr.size() && nr[p] < orow[q])) {
+          if (!mark[std::size_t(nr[p])]) gain.push_back({nr[p], a});
+          ++p;
+        } else if (p == nr.size() || orow[q] < nr[p]) {
+          if (!mark[std::size_t(orow[q])]) lose.push_back({orow[q], a});
+          ++q;
+        } else {
+          ++p;
+          ++q;
+        }
+      }
+    }
   }
+  std::vector<std::pair<int, int>> gain, lose;  // (outside row, partner)
+  for (const auto& g : gainOf) gain.insert(gain.end(), g.begin(), g.end());
+  for (const auto& l : loseOf) lose.insert(lose.end(), l.begin(), l.end());
   std::vector<int> rows = dirty;
-  std::vector<std::vector<int>> outside;
+  std::vector<int> outside, outsideStart;  // new rows of the touched outside rows, back to back
   if (!gain.empty() || !lose.empty()) {
     std::sort(gain.begin(), gain.end());
     std::sort(lose.begin(), lose.end());
@@ -257,7 +284,7 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (int b : touched) {
-      std::vector<int> row;
+      outsideStart.push_back(int(outside.size()));
       const auto o = lists.neighbours(b);
       const auto g0 = std::lower_bound(gain.begin(), gain.end(), std::pair<int, int>{b, -1});
       auto g1 = g0;
@@ -265,15 +292,18 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
       const auto l0 = std::lower_bound(lose.begin(), lose.end(), std::pair<int, int>{b, -1});
       auto l1 = l0;
       while (l1 != lose.end() && l1->first == b) ++l1;
+      // Merge the old row (minus the lost partners) with the gained ones; all three sorted.
+      auto g = g0;
+      auto l = l0;
       for (int v : o) {
-        bool lost = false;
-        for (auto it = l0; it != l1 && !lost; ++it) lost = it->second == v;
-        if (!lost) row.push_back(v);
+        while (g != g1 && g->second < v) outside.push_back((g++)->second);
+        while (l != l1 && l->second < v) ++l;
+        if (l != l1 && l->second == v) continue;
+        outside.push_back(v);
       }
-      for (auto it = g0; it != g1; ++it) row.push_back(it->second);
-      std::sort(row.begin(), row.end());
-      outside.push_back(std::move(row));
+      while (g != g1) outside.push_back((g++)->second);
     }
+    outsideStart.push_back(int(outside.size()));
     rows.insert(rows.end(), touched.begin(), touched.end());
   }
   // rows: dirty (ascending) then touched (ascending, disjoint from dirty); sort a permutation.
@@ -282,11 +312,10 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   std::sort(order.begin(), order.end(), [&](int p, int q) { return rows[std::size_t(p)] < rows[std::size_t(q)]; });
   std::vector<int> sortedRows(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) sortedRows[k] = rows[std::size_t(order[k])];
-  const int nd = int(dirty.size());
   replaceRows(lists, sortedRows, [&](int k) -> std::span<const int> {
     const int o = order[std::size_t(k)];
     if (o < nd) return r.rowOf(o);
-    return outside[std::size_t(o - nd)];
+    return {outside.data() + outsideStart[std::size_t(o - nd)], outside.data() + outsideStart[std::size_t(o - nd + 1)]};
   });
 }
 
@@ -299,39 +328,88 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
     const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
     return 1.0 / std::sqrt(std::max(lmin, 1e-300));
   };
-  // Survivors' rows, remapped (the map is increasing, so rows stay sorted).
-  std::vector<std::vector<int>> rows(n);
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < nOld; ++i) {
-    const int ni = map.empty() ? i : map[i];
-    if (ni < 0) continue;
-    for (int j : old.neighbours(i)) {
-      const int nj = map.empty() ? j : map[j];
-      if (nj >= 0) rows[ni].push_back(nj);
-    }
-  }
+  // Pairs with a new bubble k. If the averaged distance is ≤ r then |d|_{M_k} ≤ r√2 or
+  // |d|_{M_j} ≤ r√2, i.e. |d| ≤ r√2·h1 of one of the two: each new bubble searches all
+  // bubbles within its own reach, and each bubble searches the new ones within its reach (a
+  // grid of the new bubbles only). Local reaches: a fine bubble never scans the box a coarse
+  // one needs (a global max h1 made graded remeshes scan ~10⁴ nodes per insertion).
+  std::vector<std::pair<int, int>> pairs;  // (row, partner), both directions
   if (firstNew < n) {
-    double hmax = 0;
-    for (int i = 0; i < n; ++i) hmax = std::max(hmax, h1Of(i));
     Vec2 lo = x[0], hi = x[0];
     for (const auto& p : x) {
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-    BucketGrid grid(lo, hi, std::max(std::sqrt(std::max((hi - lo).prod(), 1e-300) / n), 1e-12 * (hi - lo).norm() + 1e-300),
-                    4L * n + 16);
-    grid.build(x);
-    const double R = radius * std::sqrt(2.0) * hmax;
-    for (int k = firstNew; k < n; ++k)
-      grid.forEach(x[k], R, [&](int j) {
-        if (j == k || !withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) return;
-        rows[k].push_back(j);
-        if (j < firstNew) rows[j].push_back(k);  // new ids exceed every survivor: still sorted
-      });
-#pragma omp parallel for schedule(static)
-    for (int k = firstNew; k < n; ++k) std::sort(rows[k].begin(), rows[k].end());
+    const double area = std::max((hi - lo).prod(), 1e-300);
+    const double tiny = 1e-12 * (hi - lo).norm() + 1e-300;
+    BucketGrid all(lo, hi, std::max(std::sqrt(area / n), tiny), 4L * n + 16);
+    all.build(x);
+    const int nNew = n - firstNew;
+    BucketGrid fresh(lo, hi, std::max(std::sqrt(area / nNew), tiny), 4L * nNew + 16);
+    fresh.build(x.subspan(std::size_t(firstNew)));
+    const double reach = radius * std::sqrt(2.0);
+    std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
+#pragma omp parallel
+    {
+      auto& out = found[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static) nowait
+      for (int k = firstNew; k < n; ++k)
+        all.forEach(x[k], reach * h1Of(k), [&](int j) {
+          if (j != k && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
+#pragma omp for schedule(static)
+      for (int j = 0; j < n; ++j)
+        fresh.forEach(x[j], reach * h1Of(j), [&](int q) {
+          const int k = firstNew + q;
+          if (k != j && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
+    }
+    for (const auto& f : found)
+      for (const auto& [k, j] : f) {
+        pairs.push_back({k, j});
+        if (j < firstNew) pairs.push_back({j, k});
+      }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   }
-  return toCsr(rows);
+  // Rows: survivors' remapped rows (the map is increasing, so they stay sorted) followed by
+  // their new partners (ids ≥ firstNew, above every survivor), then the new rows.
+  std::vector<int> rowOfOld(static_cast<std::size_t>(n), -1);
+  for (int i = 0; i < nOld; ++i) {
+    const int ni = map.empty() ? i : map[i];
+    if (ni >= 0) rowOfOld[std::size_t(ni)] = i;
+  }
+  AdjacencyLists a;
+  a.offsets.assign(std::size_t(n) + 1, 0);
+  {
+    std::vector<int> extra(static_cast<std::size_t>(n) + 1, 0);
+    for (const auto& pr : pairs) ++extra[std::size_t(pr.first)];
+#pragma omp parallel for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      int c = extra[std::size_t(i)];
+      const int o = rowOfOld[std::size_t(i)];
+      if (o >= 0)
+        for (int j : old.neighbours(o)) c += (map.empty() ? j : map[j]) >= 0;
+      a.offsets[i + 1] = c;
+    }
+  }
+  for (int i = 0; i < n; ++i) a.offsets[i + 1] += a.offsets[i];
+  a.ids.resize(std::size_t(a.offsets[n]));
+  std::vector<int> pairStart(static_cast<std::size_t>(n) + 1, 0);
+  for (const auto& pr : pairs) ++pairStart[std::size_t(pr.first) + 1];
+  for (int i = 0; i < n; ++i) pairStart[i + 1] += pairStart[i];
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    int w = a.offsets[i];
+    const int o = rowOfOld[std::size_t(i)];
+    if (o >= 0)
+      for (int j : old.neighbours(o)) {
+        const int nj = map.empty() ? j : map[j];
+        if (nj >= 0) a.ids[std::size_t(w++)] = nj;
+      }
+    for (int p = pairStart[i]; p < pairStart[i + 1]; ++p) a.ids[std::size_t(w++)] = pairs[std::size_t(p)].second;
+  }
+  return a;
 }
 
 } // namespace ablmg::mesher

@@ -30,8 +30,10 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const M
 /// rule keeps the result symmetric); the result is the same as without the mask.
 AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2> positions,
                                 std::span<const Metric2> metrics, double radius, std::span<const char> moved = {});
-/// The same, in place: only the rows to recompute are touched when no row changes its length
-/// (cost ∝ rows near moved nodes, not N: the dynamics refreshes ~50 times per run).
+/// The same, in place: only the rows to recompute are touched when they fit in their row's
+/// capacity (cost ∝ rows near moved nodes, not N: the dynamics refreshes up to every step).
+/// The in-place functions may leave the lists with slack (AdjacencyLists::ends); compact()
+/// them before comparing ids/offsets.
 void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> positions, std::span<const Metric2> metrics,
                              double radius, std::span<const char> moved = {});
 

@@ -17,4 +17,18 @@ bool AdjacencyLists::isSymmetric() const {
   return true;
 }
 
+void AdjacencyLists::compact() {
+  if (ends.empty()) return;
+  const int n = size();
+  int w = 0;
+  for (int i = 0; i < n; ++i) {
+    const int b = offsets[i], e = ends[i];
+    offsets[i] = w;
+    for (int k = b; k < e; ++k) ids[w++] = ids[k];  // w ≤ k: a forward copy is safe
+  }
+  offsets[n] = w;
+  ids.resize(std::size_t(w));
+  ends.clear();
+}
+
 } // namespace ablmg::mesher

@@ -28,14 +28,22 @@ struct NodeSet {
   int size() const { return int(positions.size()); }
 };
 
-/// Symmetric neighbour lists in compressed rows: neighbours of i are ids[offsets[i] .. offsets[i+1]).
+/// Symmetric neighbour lists in compressed rows: neighbours of i are ids[offsets[i] .. end(i)),
+/// end(i) = offsets[i+1] when `ends` is empty (compact form, what every public function returns
+/// unless it says otherwise), else ends[i] ≤ offsets[i+1]: rows with slack, so that the
+/// dynamics' local refreshes rewrite a row in place instead of laying out all rows again.
 /// Invariants: symmetric (j ∈ adj(i) ⇔ i ∈ adj(j)); each row sorted by id; no self-loops.
 struct AdjacencyLists {
   std::vector<int> offsets{0};
   std::vector<int> ids;
+  std::vector<int> ends;  ///< empty (compact) or one row end per node
   int size() const { return int(offsets.size()) - 1; }
-  std::span<const int> neighbours(int i) const { return {ids.data() + offsets[i], ids.data() + offsets[i + 1]}; }
+  std::span<const int> neighbours(int i) const {
+    return {ids.data() + offsets[i], ids.data() + (ends.empty() ? offsets[i + 1] : ends[i])};
+  }
   bool isSymmetric() const;
+  /// Drops the slack: afterwards `ends` is empty and ids holds the rows back to back.
+  void compact();
 };
 
 } // namespace ablmg::mesher

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -108,4 +109,28 @@ TEST(Metric2, EdgeLengthOfConstantMetricIsEquation3) {
   // sizes h and 2h at the ends: exact ∫ dt / h(t) with h linear = ln 2 / h
   const Metric2 m1 = Metric2::isotropic(1.0), m2 = Metric2::isotropic(2.0);
   EXPECT_NEAR(edgeLength(Vec2(0, 0), m1, Vec2(1, 0), m2), std::log(2.0), 1e-12);
+}
+
+TEST(Metric2, ExpOfLogIsTheIdentityUpToAnisotropy1e5) {
+  // expm is a closed form (cosh/sinh of the traceless part), logm an eigen-decomposition:
+  // the two must agree on sizes and directions, from isotropic tensors (δ = 0 branch) to a
+  // size ratio of 1e5 (eigenvalue ratio 1e10, the hostile-input bound).
+  for (double ratio : {1.0, 1.0 + 1e-9, 2.0, 50.0, 1e5})
+    for (double theta : {0.0, 0.3, 1.2, 2.9}) {
+      const Metric2 m = Metric2::fromSizes(0.7 * ratio, 0.7, theta);
+      const Metric2 r = m.logm().expm();
+      const MetricEigen a = m.eigen(), b = r.eigen();
+      // The entries m11, m12, m22 of a tensor with eigenvalue ratio ratio² carry its small
+      // eigenvalue only to ≈ ratio² · 1e-16 (relative), whatever computed them.
+      const double tol = std::max(1e-9, 1e-15 * ratio * ratio);
+      EXPECT_NEAR(b.h1 / a.h1, 1.0, tol) << ratio << " " << theta;
+      EXPECT_NEAR(b.h2 / a.h2, 1.0, tol) << ratio << " " << theta;
+      if (ratio > 1.01) EXPECT_NEAR(std::sin(b.theta - a.theta), 0.0, 1e-9) << ratio << " " << theta;
+      EXPECT_TRUE(r.isSpd());
+    }
+  // exp of a diagonal log: the exponentials of the entries.
+  const Metric2 d = Metric2::raw(std::log(4.0), 0.0, std::log(0.25)).expm();
+  EXPECT_NEAR(d.m11(), 4.0, 1e-14);
+  EXPECT_NEAR(d.m22(), 0.25, 1e-15);
+  EXPECT_EQ(d.m12(), 0.0);
 }

@@ -229,8 +229,8 @@ INSTANTIATE_TEST_SUITE_P(Section43, PaperDisk,
 
 TEST(PlaceNodes, WarmStartFromConvergedNodesNeedsFewSteps) {
   // Seeds = the interior nodes of a converged packing for the same metric: nearly all of them
-  // are taken, so the dynamics has less to do (the ×100 residual drop it still asks comes from
-  // the few defects near the boundary: 106 steps against 199 cold).
+  // are taken, so the dynamics has less to do (its target refers to a fresh lattice's residual,
+  // not to its own small one, which it could stall above: measured 69 steps against 229 cold).
   AnalyticMetricField m(AnalyticMetricField::Form::Sizes, "0.1*abs(y)+0.2", "0.5*(0.1*abs(y)+0.2)", "0");
   const Domain disk = Domain::disk({0, 0}, 10);
   const PlacementResult cold = placeNodes(disk, m);
@@ -239,7 +239,7 @@ TEST(PlaceNodes, WarmStartFromConvergedNodesNeedsFewSteps) {
     if (cold.nodes.kinds[i] == NodeKind::Interior) o.warmStart.push_back(cold.nodes.positions[i]);
   const PlacementResult warm = placeNodes(disk, m, o);
   EXPECT_NEAR(double(warm.stats.initialNodes), double(cold.stats.finalNodes), 0.01 * cold.stats.finalNodes);
-  EXPECT_LT(warm.stats.steps, 0.7 * cold.stats.steps);  // measured 106 vs 199
+  EXPECT_LT(warm.stats.steps, 0.7 * cold.stats.steps) << "warm residual " << warm.stats.initialResidual << " -> " << warm.stats.finalResidual << ", cold " << cold.stats.initialResidual << " -> " << cold.stats.finalResidual;
   EXPECT_GE(fractionIn(nearestInterior(warm), 0.85, 1.15), 0.95);
 }
 
