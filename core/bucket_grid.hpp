@@ -49,6 +49,12 @@ public:
       for (int x = x0; x <= x1; ++x)
         for (int id = head_[y * nx_ + x]; id >= 0; id = next_[id]) f(id);
   }
+  /// Calls f(id) for every id in cells overlapping the box p ± (rx, ry) (static form).
+  template <class F> void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
+    const int x0 = cellX(p.x() - rx), x1 = cellX(p.x() + rx), y0 = cellY(p.y() - ry), y1 = cellY(p.y() + ry);
+    for (int y = y0; y <= y1; ++y)
+      for (int k = offsets_[y * nx_ + x0], e = offsets_[y * nx_ + x1 + 1]; k < e; ++k) f(ids_[k]);
+  }
   /// Calls f(id) for every id in cells overlapping the box [p − r, p + r] (static form).
   template <class F> void forEach(const Vec2& p, double r, F&& f) const {
     const int x0 = cellX(p.x() - r), x1 = cellX(p.x() + r), y0 = cellY(p.y() - r), y1 = cellY(p.y() + r);

@@ -23,17 +23,26 @@ struct HalfEdge {
   }
 };
 
+/// All half-edges in HalfEdge order: a counting sort on `lo` (O(V + T)), then each bucket
+/// (a vertex's few edges) sorted on its own. Vertex ids out of range go in one last bucket,
+/// sorted in full (validate() reports them; no out-of-bounds access on the way).
 std::vector<HalfEdge> halfEdges(const Mesh2& m) {
-  std::vector<HalfEdge> h;
-  h.reserve(3 * m.triangles.size());
+  const int nv = m.numVertices();
+  std::vector<int> start(static_cast<std::size_t>(nv) + 2, 0);
+  auto bucket = [nv](int lo) { return lo >= 0 && lo < nv ? lo : nv; };
+  for (const auto& tr : m.triangles)
+    for (int k = 0; k < 3; ++k) ++start[std::size_t(bucket(std::min(tr[k], tr[(k + 1) % 3]))) + 1];
+  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  std::vector<HalfEdge> h(3 * m.triangles.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
   for (int t = 0; t < m.numTriangles(); ++t) {
     const auto& tr = m.triangles[t];
     for (int k = 0; k < 3; ++k) {
       const int a = tr[k], b = tr[(k + 1) % 3];
-      h.push_back({std::min(a, b), std::max(a, b), a < b ? 1 : 0, t});
+      h[std::size_t(fill[std::size_t(bucket(std::min(a, b)))]++)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
     }
   }
-  std::sort(h.begin(), h.end());
+  for (int v = 0; v <= nv; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
   return h;
 }
 
@@ -107,7 +116,7 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
     std::size_t j = i;
     while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
     const std::size_t count = j - i;
-    const std::string name = "edge (" + std::to_string(h[i].lo) + ", " + std::to_string(h[i].hi) + ")";
+    const auto name = [&] { return "edge (" + std::to_string(h[i].lo) + ", " + std::to_string(h[i].hi) + ")"; };
     if (count == 2 && h[i].forward != h[i + 1].forward) {
       // interior edge, consistently oriented
     } else if (count == 1) {
@@ -115,13 +124,13 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
       const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
       if (it == bnd.end() || *it != dir) {
         ++r.openEdges;
-        problem(name + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
+        problem(name() + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
       } else {
         bndUsed[it - bnd.begin()] = 1;
       }
     } else {
       ++r.nonManifoldEdges;
-      problem(name + " lies in " + std::to_string(count) + " triangles" + (count == 2 ? " with the same orientation" : ""));
+      problem(name() + " lies in " + std::to_string(count) + " triangles" + (count == 2 ? " with the same orientation" : ""));
     }
     i = j;
   }

@@ -11,6 +11,14 @@
 namespace ablmg::mesher {
 namespace {
 
+/// Half-widths (x, y) of the bounding box of {d : dᵀ M d ≤ r²}: r·√((M⁻¹)₁₁), r·√((M⁻¹)₂₂).
+/// If the averaged metric distance of a pair is ≤ r then the smaller of |d|_{M_i}, |d|_{M_j}
+/// is ≤ r, so every pair lies in the box of one of its two nodes.
+Vec2 reachBox(const Metric2& m, double r) {
+  const double det = std::max(m.det(), 1e-300);
+  return {r * std::sqrt(m.m22() / det), r * std::sqrt(m.m11() / det)};
+}
+
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
 /// does not depend on the thread count). rowFn(i, out) appends row i to out.
@@ -53,12 +61,9 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
   BucketGrid grid(lo, hi, std::max(std::sqrt(area / n), 1e-12 * (hi - lo).norm() + 1e-300), 4L * n + 16);
   grid.build(x);
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
-    // h1 (largest semi-axis of the unit ellipse) = 1/sqrt(λ_min).
-    const double a = m[i].m11(), b = m[i].m12(), c = m[i].m22();
-    const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
-    const double R = radius * std::sqrt(2.0) / std::sqrt(std::max(lmin, 1e-300));
+    const Vec2 R = reachBox(m[i], radius);
     const std::size_t start = out.size();
-    grid.forEach(x[i], R, [&](int j) {
+    grid.forEachInBox(x[i], R.x(), R.y(), [&](int j) {
       if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
     });
     std::sort(out.begin() + std::ptrdiff_t(start), out.end());
@@ -323,16 +328,11 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
                               std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   const int nOld = old.size();
-  auto h1Of = [&](int i) {
-    const double a = m[i].m11(), b = m[i].m12(), c = m[i].m22();
-    const double lmin = 0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b);
-    return 1.0 / std::sqrt(std::max(lmin, 1e-300));
-  };
-  // Pairs with a new bubble k. If the averaged distance is ≤ r then |d|_{M_k} ≤ r√2 or
-  // |d|_{M_j} ≤ r√2, i.e. |d| ≤ r√2·h1 of one of the two: each new bubble searches all
-  // bubbles within its own reach, and each bubble searches the new ones within its reach (a
-  // grid of the new bubbles only). Local reaches: a fine bubble never scans the box a coarse
-  // one needs (a global max h1 made graded remeshes scan ~10⁴ nodes per insertion).
+  // Pairs with a new bubble k lie in the reach box (reachBox) of k or of the partner: each new
+  // bubble searches all bubbles within its own box, and each bubble searches the new ones
+  // within its box (a grid of the new bubbles only). Local reaches: a fine bubble never scans
+  // the box a coarse one needs (a global max h1 made graded remeshes scan ~10⁴ nodes per
+  // insertion).
   std::vector<std::pair<int, int>> pairs;  // (row, partner), both directions
   if (firstNew < n) {
     Vec2 lo = x[0], hi = x[0];
@@ -347,22 +347,25 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
     const int nNew = n - firstNew;
     BucketGrid fresh(lo, hi, std::max(std::sqrt(area / nNew), tiny), 4L * nNew + 16);
     fresh.build(x.subspan(std::size_t(firstNew)));
-    const double reach = radius * std::sqrt(2.0);
     std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
 #pragma omp parallel
     {
       auto& out = found[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static) nowait
-      for (int k = firstNew; k < n; ++k)
-        all.forEach(x[k], reach * h1Of(k), [&](int j) {
+      for (int k = firstNew; k < n; ++k) {
+        const Vec2 R = reachBox(m[k], radius);
+        all.forEachInBox(x[k], R.x(), R.y(), [&](int j) {
           if (j != k && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
         });
+      }
 #pragma omp for schedule(static)
-      for (int j = 0; j < n; ++j)
-        fresh.forEach(x[j], reach * h1Of(j), [&](int q) {
+      for (int j = 0; j < n; ++j) {
+        const Vec2 R = reachBox(m[j], radius);
+        fresh.forEachInBox(x[j], R.x(), R.y(), [&](int q) {
           const int k = firstNew + q;
           if (k != j && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
         });
+      }
     }
     for (const auto& f : found)
       for (const auto& [k, j] : f) {

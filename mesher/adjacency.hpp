@@ -16,10 +16,10 @@ inline bool withinMetricRadius(const Vec2& d, const Metric2& mi, const Metric2& 
   return 0.5 * (mi.squaredLength(d) + mj.squaredLength(d)) <= radius * radius;
 }
 
-/// Built from scratch with a bucket grid (cells ≈ mean node spacing; node i scans the box of
-/// half-width radius·√2·h1_i, which contains every partner j: if the averaged distance is ≤ r
-/// then one of |d|_{M_i}, |d|_{M_j} is ≤ r√2, so the pair is found from i or from j; the rows
-/// are then symmetrised). O(N) expected for metrics whose size varies smoothly. OpenMP.
+/// Built from scratch with a bucket grid (cells ≈ mean node spacing; node i scans the bounding
+/// box of its ellipse {d : |d|_{M_i} ≤ r}: if the averaged distance is ≤ r then one of
+/// |d|_{M_i}, |d|_{M_j} is ≤ r, so the pair is found from i or from j; the rows are then
+/// symmetrised). O(N) expected for metrics whose size varies smoothly. OpenMP.
 AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
 
 /// Refresh after the bubbles moved (§3.3): candidates of i are i's list and its neighbours'

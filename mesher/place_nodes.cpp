@@ -60,10 +60,12 @@ std::uint64_t spreadBits(std::uint64_t v) {
   return v;
 }
 
-/// Reorders nodes first … size−1 along a Z-order (Morton) curve over a grid of about one node
-/// per cell, ties by previous index. The interior lattice is grown breadth-first, which puts
-/// neighbours far apart in memory; in Z-order the force and adjacency loops read mostly
-/// nearby memory (constant metric, 10⁶ nodes, 1 thread: dynamics 15.1 s → 13.2 s).
+/// Reorders nodes first … size−1 along a Z-order (Morton) curve of their coordinates quantised
+/// to 2²⁰ steps per axis of the bounding box, ties by previous index. The interior lattice is
+/// grown breadth-first, which puts neighbours far apart in memory; in Z-order the force and
+/// adjacency loops read mostly nearby memory (constant metric, 10⁶ nodes, 1 thread: dynamics
+/// 15.1 s → 13.2 s). The fine quantisation keeps graded packings local too (a grid of one
+/// node per cell on average left ~10² nodes per cell, in BFS order, where the metric is fine).
 void zOrder(NodeSet& nodes, int first) {
   const int n = nodes.size();
   if (n - first < 2) return;
@@ -72,7 +74,7 @@ void zOrder(NodeSet& nodes, int first) {
     lo = lo.cwiseMin(nodes.positions[i]);
     hi = hi.cwiseMax(nodes.positions[i]);
   }
-  const double cell = std::max(std::sqrt(std::max((hi - lo).prod(), 0.0) / (n - first)), 1e-12 * (hi - lo).norm() + 1e-300);
+  const double cell = std::max((hi - lo).maxCoeff() / double(1 << 20), 1e-300);
   std::vector<std::pair<std::uint64_t, int>> key(std::size_t(n - first));
   for (int i = first; i < n; ++i) {
     const Vec2 q = (nodes.positions[i] - lo) / cell;
