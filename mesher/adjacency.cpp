@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <cmath>
 
@@ -123,20 +124,30 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
-    std::vector<int> stamp(lo < hi ? std::size_t(n) : 0, 0);
+    // Candidates seen for the current row: one bit per node (n/8 bytes, cache-resident),
+    // cleared after the row from the list of the ids set.
+    std::vector<std::uint64_t> seen(lo < hi ? std::size_t(n) / 64 + 1 : 0, 0);
+    std::vector<int> tested;
     auto& out = r.buf[std::size_t(t)];
     for (int k = lo; k < hi; ++k) {
       const int i = rows[std::size_t(k)];
-      const int mk = i + 1;
-      stamp[i] = mk;
       const std::size_t start = out.size();
       r.start[std::size_t(k)] = int(start);
       r.thread[std::size_t(k)] = t;
       const Vec2 xi = x[i];
       const Metric2& mi = m[i];
+      tested.clear();
+      auto mark = [&](int c) {
+        std::uint64_t& word = seen[std::size_t(c) >> 6];
+        const std::uint64_t bit = std::uint64_t(1) << (c & 63);
+        if (word & bit) return false;
+        word |= bit;
+        tested.push_back(c);
+        return true;
+      };
+      mark(i);
       auto test = [&](int c) {
-        if (stamp[c] == mk) return;
-        stamp[c] = mk;
+        if (!mark(c)) return;
         const Vec2 d = x[c] - xi;
         if (mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2) out.push_back(c);  // withinMetricRadius
       };
@@ -144,6 +155,7 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
         test(j);
         for (int c : old.neighbours(j)) test(c);
       }
+      for (int c : tested) seen[std::size_t(c) >> 6] = 0;
       for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
         const int v = out[q];
         std::size_t b = q;
