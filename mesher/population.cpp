@@ -94,23 +94,48 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   const auto [blo, bhi] = geo.boundingBox();
   BucketGrid addedGrid(blo, bhi, std::sqrt((bhi - blo).prod() / std::max(n, 1)), 4L * n + 16);
   addedGrid.clearIncremental();
-  for (int i : ins) {
+  // The twelve candidate points around each insertion site, tested against the site's
+  // neighbours and the boundary in parallel (these tests do not depend on other insertions);
+  // the greedy pass below adds only the distances to points inserted before.
+  constexpr int kCand = 12;
+  const int nIns = int(ins.size());
+  std::vector<Vec2> candPos(std::size_t(nIns) * kCand);
+  std::vector<double> candGap(std::size_t(nIns) * kCand, -1.0);  // −1: outside or too close to the boundary
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int q = 0; q < nIns; ++q) {
+    const int i = ins[std::size_t(q)];
     if (locked[i]) continue;
-    if (insBudget <= 0 && alpha[i] >= o.insertBelow) continue;
     const Vec2 xi = nodes.positions[i];
     const Metric2& mi = ms[i];
     const MetricEigen e = mi.eigen();
     const double c = std::cos(e.theta), s = std::sin(e.theta);
-    Vec2 best = xi;
-    double bestD = -1;
-    for (int k = 0; k < 12; ++k) {
+    for (int k = 0; k < kCand; ++k) {
       const double t = k * std::numbers::pi / 6;
       const Vec2 u(std::cos(t) * e.h1, std::sin(t) * e.h2);
       const Vec2 cand = xi + Vec2(c * u.x() - s * u.y(), s * u.x() + c * u.y());
+      const std::size_t slot = std::size_t(q) * kCand + std::size_t(k);
+      candPos[slot] = cand;
+      if (!geo.inside(cand) || geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) < 0.5) continue;
       double dmin = std::numeric_limits<double>::infinity();
       for (int j : adj.neighbours(i)) dmin = std::min(dmin, mi.length(nodes.positions[j] - cand));
-      addedGrid.forEachIncremental(cand, o.minGap * e.h1, [&](int k) { dmin = std::min(dmin, mi.length(added[k].first - cand)); });
-      if (dmin > bestD && geo.inside(cand) && geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) >= 0.5) {
+      candGap[slot] = dmin;
+    }
+  }
+  for (int q = 0; q < nIns; ++q) {
+    const int i = ins[std::size_t(q)];
+    if (locked[i]) continue;
+    if (insBudget <= 0 && alpha[i] >= o.insertBelow) continue;
+    const Metric2& mi = ms[i];
+    const double h1 = mi.eigen().h1;
+    Vec2 best = nodes.positions[i];
+    double bestD = -1;
+    for (int k = 0; k < kCand; ++k) {
+      const std::size_t slot = std::size_t(q) * kCand + std::size_t(k);
+      if (candGap[slot] < 0) continue;
+      const Vec2 cand = candPos[slot];
+      double dmin = candGap[slot];
+      addedGrid.forEachIncremental(cand, o.minGap * h1, [&](int a) { dmin = std::min(dmin, mi.length(added[a].first - cand)); });
+      if (dmin > bestD) {
         bestD = dmin;
         best = cand;
       }
