@@ -19,7 +19,10 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <map>
+#include <array>
+#include <climits>
+#include <tuple>
+#include <vector>
 
 namespace ablmg::cli {
 namespace {
@@ -59,39 +62,57 @@ double parseNumber(const std::string& flag, const std::string& v) {
 /// of largest area is the outer one. Loops are `smooth` so the mesher places its own boundary
 /// nodes and keeps only corners (ref changes, turns > 30°).
 Domain domainFromBoundary(const Mesh2& mesh, const std::string& name) {
-  std::map<std::pair<int, int>, int> count;
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) count[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}]++;
-  std::map<std::pair<int, int>, int> refs;
-  for (const auto& e : mesh.boundaryEdges) refs[{std::min(e.a, e.b), std::max(e.a, e.b)}] = e.ref;
-  std::map<int, std::pair<int, int>> next;  // a → (b, ref)
+  // Boundary edges: undirected edges of exactly one triangle (sorted (lo, hi, a, b) records).
+  struct DirectedEdge {
+    int lo, hi, a, b;
+    bool operator<(const DirectedEdge& o) const { return std::tie(lo, hi, a, b) < std::tie(o.lo, o.hi, o.a, o.b); }
+  };
+  std::vector<DirectedEdge> all;
+  all.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      if (count[{std::min(a, b), std::max(a, b)}] != 1) continue;
-      auto it = refs.find({std::min(a, b), std::max(a, b)});
-      ABLMG_REQUIRE(!next.count(a), name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
-      next[a] = {b, it == refs.end() ? 1 : it->second};
+      all.push_back({std::min(a, b), std::max(a, b), a, b});
     }
-  ABLMG_REQUIRE(!next.empty(), name << ": mesh has no boundary edges");
+  std::sort(all.begin(), all.end());
+  std::vector<std::array<int, 3>> refs;  // (lo, hi, ref) of the file's Edges, sorted; the first ref wins
+  for (const auto& e : mesh.boundaryEdges) refs.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.ref});
+  std::stable_sort(refs.begin(), refs.end(), [](const auto& x, const auto& y) { return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1]; });
+  const int nv = mesh.numVertices();
+  std::vector<int> next(static_cast<std::size_t>(nv), -1), nextRef(static_cast<std::size_t>(nv), 1);  // a → b, ref
+  bool any = false;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i;
+    while (j < all.size() && all[j].lo == all[i].lo && all[j].hi == all[i].hi) ++j;
+    if (j - i == 1) {
+      const int a = all[i].a, b = all[i].b;
+      const auto it = std::lower_bound(refs.begin(), refs.end(), std::array<int, 3>{all[i].lo, all[i].hi, INT_MIN},
+                                       [](const auto& x, const auto& y) { return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1]; });
+      ABLMG_REQUIRE(next[std::size_t(a)] < 0, name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
+      next[std::size_t(a)] = b;
+      nextRef[std::size_t(a)] = it != refs.end() && (*it)[0] == all[i].lo && (*it)[1] == all[i].hi ? (*it)[2] : 1;
+      any = true;
+    }
+    i = j;
+  }
+  ABLMG_REQUIRE(any, name << ": mesh has no boundary edges");
   std::vector<BoundaryLoop> loops;
   std::vector<double> areas;
-  std::map<int, bool> used;
-  for (const auto& [start, unused] : next) {
-    if (used[start]) continue;
+  std::vector<char> used(static_cast<std::size_t>(nv), 0);
+  for (int start = 0; start < nv; ++start) {  // loops start at their smallest unused vertex
+    if (next[std::size_t(start)] < 0 || used[std::size_t(start)]) continue;
     BoundaryLoop loop;
     loop.smooth = true;
     double area = 0;
     int v = start;
     do {
-      used[v] = true;
-      auto it = next.find(v);
-      ABLMG_REQUIRE(it != next.end(), name << ": boundary is not closed at vertex " << v + 1);
+      used[std::size_t(v)] = 1;
+      ABLMG_REQUIRE(next[std::size_t(v)] >= 0, name << ": boundary is not closed at vertex " << v + 1);
       loop.points.push_back(mesh.vertices[v]);
-      loop.tags.push_back(it->second.second);
-      area += 0.5 * cross(mesh.vertices[v], mesh.vertices[it->second.first]);
-      v = it->second.first;
-      ABLMG_REQUIRE(v == start || !used[v], name << ": boundary loops touch at vertex " << v + 1);
+      loop.tags.push_back(nextRef[std::size_t(v)]);
+      area += 0.5 * cross(mesh.vertices[v], mesh.vertices[next[std::size_t(v)]]);
+      v = next[std::size_t(v)];
+      ABLMG_REQUIRE(v == start || !used[std::size_t(v)], name << ": boundary loops touch at vertex " << v + 1);
     } while (v != start);
     loops.push_back(std::move(loop));
     areas.push_back(area);

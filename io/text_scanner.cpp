@@ -3,6 +3,9 @@
 #include "core/error.hpp"
 
 #include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <memory>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -13,12 +16,17 @@ namespace ablmg::io {
 TextScanner::TextScanner(std::string text, std::string name) : text_(std::move(text)), name_(std::move(name)) {}
 
 std::string readTextFile(const std::string& path) {
-  std::ifstream is(path, std::ios::binary);
-  ABLMG_REQUIRE(is, path << ": cannot open for reading");
-  std::ostringstream ss;
-  ss << is.rdbuf();
-  ABLMG_REQUIRE(!is.bad(), path << ": read error");
-  return ss.str();
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  ABLMG_REQUIRE(f, path << ": cannot open for reading");
+  std::string text;
+  char buf[1 << 16];
+  for (;;) {
+    const std::size_t got = std::fread(buf, 1, sizeof buf, f.get());
+    text.append(buf, got);
+    if (got < sizeof buf) break;
+  }
+  ABLMG_REQUIRE(!std::ferror(f.get()), path << ": read error");
+  return text;
 }
 
 void TextScanner::skipSpace() {
@@ -96,6 +104,12 @@ bool TextScanner::isNumber(std::string_view tok) {
 
 double TextScanner::nextDouble(const char* what) {
   const auto tok = next(what);
+  // Fast path: a plain decimal number, parsed in place (std::from_chars, exact like strtod).
+  // Anything else ('+' sign, hex, out of range, garbage) takes strtod's path below, so the
+  // accepted syntax and the messages are strtod's.
+  double fast = 0;
+  const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), fast);
+  if (ec == std::errc() && ptr == tok.data() + tok.size() && std::isfinite(fast)) return fast;
   const std::string s(tok.substr(0, 400));
   char* end = nullptr;
   errno = 0;
@@ -108,6 +122,9 @@ double TextScanner::nextDouble(const char* what) {
 
 long TextScanner::nextInt(const char* what, long lo, long hi) {
   const auto tok = next(what);
+  long fast = 0;
+  const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), fast);
+  if (ec == std::errc() && ptr == tok.data() + tok.size() && fast >= lo && fast <= hi) return fast;
   const std::string s(tok.substr(0, 40));
   char* end = nullptr;
   errno = 0;

@@ -121,6 +121,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
                 "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got " << options.timeStep << ", "
                                                                              << options.mass << ", " << options.damping);
+  ABLMG_REQUIRE(options.metricLag >= 0 && options.metricLag <= 0.5,
+                "placeNodes: metricLag must be in [0, 0.5] (metric units), got " << options.metricLag);
   ABLMG_REQUIRE(options.plateauSteps >= 0 && options.plateauGain >= 0,
                 "placeNodes: need plateauSteps >= 0 and plateauGain >= 0; got " << options.plateauSteps << ", "
                                                                                << options.plateauGain);
@@ -238,7 +240,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     }
     t = Clock::now();
     sys.advance(p);
-    if (!constant) sys.updateMetrics(metric, false);
+    if (!constant) sys.updateMetrics(metric, false, options.metricLag);
     const long awake = sys.updateActivity(adj, sleepBelow, options.timeStep);
     st.activeBubbleSteps += awake;
     allAwake = awake == sys.size() - fixedCount;

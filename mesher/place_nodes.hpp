@@ -77,6 +77,11 @@ struct PlacementOptions {
   /// adaptive loop: on the wave front it once saved no time and a cycle's q min fell to 0.26.
   int plateauSteps = 0;
   double plateauGain = 0.002;  ///< share gain (0.002 = 0.2 point) that counts as progress
+  /// A bubble's metric is evaluated again once it has moved this far (metric units) from where
+  /// it was last evaluated; the output metrics are exact. Under a background mesh the
+  /// evaluation (point location + log-Euclidean interpolation) is ~25 % of a dynamics step:
+  /// 0.1 instead of 0.05 made the ring remesh 15 % faster with the same edge statistics.
+  double metricLag = 0.1;
   long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
   std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
   int threads = 0;            ///< 0 = OpenMP default

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 using namespace ablmg;
@@ -40,6 +43,8 @@ TEST(Medit, ReadsMmgStyleMeshSkippingUnknownSections) {
 TEST(Medit, MeshRoundTripIsExact) {
   Mesh2 m = io::readMesh(kData + "/square.mesh");
   m.vertices[4] = Vec2(0.1 + 1e-13, 1.0 / 3.0);  // needs 17 digits to survive
+  m.vertices[0] = Vec2(-2.5e17, 4.9e-324);         // huge and subnormal: shortest forms read back exactly
+  m.vertices[1] = Vec2(std::nextafter(1.0, 2.0), -0.0);
   const auto p = tmpPath("rt.mesh");
   io::writeMesh(p, m);
   const Mesh2 r = io::readMesh(p);
@@ -67,6 +72,26 @@ TEST(Medit, TensorSolRoundTripIsExact) {
     EXPECT_EQ(r[i].m12(), ms[i].m12());
     EXPECT_EQ(r[i].m22(), ms[i].m22());
   }
+  std::filesystem::remove(p);
+}
+
+TEST(Medit, NumbersInEveryStrtodFormReadTheSame) {
+  // The fast from_chars path and the strtod fallback must agree: '+' signs, exponents, a
+  // leading '.', an underflow to a subnormal, an int written "+3".
+  const std::string text = "MeshVersionFormatted 2\nDimension 2\nVertices\n+3\n"
+                           "+1.5 .25 +1\n1e-310 -2E+3 0\n0.1 1.0 2\n"
+                           "Triangles\n1\n1 2 3 0\nEnd\n";
+  const auto p = tmpPath("forms.mesh");
+  {
+    std::ofstream os(p);
+    os << text;
+  }
+  const Mesh2 m = io::readMesh(p);
+  ASSERT_EQ(m.numVertices(), 3);
+  EXPECT_EQ(m.vertices[0], Vec2(1.5, 0.25));
+  EXPECT_EQ(m.vertices[1], Vec2(std::strtod("1e-310", nullptr), -2000.0));
+  EXPECT_EQ(m.vertices[2], Vec2(0.1, 1.0));
+  EXPECT_EQ(m.vertexRefs[0], 1);
   std::filesystem::remove(p);
 }
 
