@@ -128,7 +128,7 @@ int runMesh(const std::vector<std::string>& args) {
                           {"crossingsFound", c.crossingsFound}, {"deletedEdges", c.deletedEdges},
                           {"deletionRounds", c.deletionRounds}, {"consistentTriangles", c.consistentTriangles},
                           {"repairedTriangles", c.repairedTriangles}, {"failedRecoveries", c.failedRecoveries},
-                          {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"droppedNodes", c.droppedNodes},
+                          {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"localRepair", c.localRepair}, {"droppedNodes", c.droppedNodes},
                           {"secondsLocalMeshes", c.secondsLocalMeshes}, {"secondsRepair", c.secondsRepair}}},
              {"secondsValidate", r.stats.secondsValidate}};
   }

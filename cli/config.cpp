@@ -105,7 +105,8 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
   return b;
 }
 const std::vector<Binding<ConnectOptions>>& connectBindings() {
-  static const std::vector<Binding<ConnectOptions>> b = {{"threads", &ConnectOptions::threads}};
+  static const std::vector<Binding<ConnectOptions>> b = {{"threads", &ConnectOptions::threads},
+                                                         {"localRepair", &ConnectOptions::localRepair}};
   return b;
 }
 

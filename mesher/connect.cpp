@@ -292,6 +292,184 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   return consistent;
 }
 
+/// Local repair (the usual case: a few near-cocircular spots in a valid union). Defects of the
+/// union: an edge in one triangle that is not a boundary edge on its inner side, in three or
+/// more, or in two with the same orientation; a boundary edge in none. The triangles touching a
+/// defect's vertices are removed with two more rings around them, and what is open (those
+/// holes and any gap) is triangulated again from its own points only: Delaunay, its boundary
+/// locked, inside by orientation, eq. (12) swaps. Fills `result` and returns true when the
+/// union of kept and new triangles validates against `area`; false (nothing to trust) else.
+bool repairLocally(const PlacementResult& placement, const std::vector<std::array<int, 3>>& consistent, double area,
+                   ConnectResult& result) {
+  const auto& pos = placement.nodes.positions;
+  const auto& met = placement.metrics;
+  const int n = int(pos.size());
+  struct Half {
+    int lo, hi, a, t;  // undirected key, start vertex of the directed edge, triangle
+    bool operator<(const Half& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t; }
+  };
+  auto halves = [&](const std::vector<std::array<int, 3>>& tris, const std::vector<char>* skip) {
+    std::vector<Half> h;
+    h.reserve(3 * tris.size());
+    for (int t = 0; t < int(tris.size()); ++t) {
+      if (skip && (*skip)[std::size_t(t)]) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int a = tris[std::size_t(t)][k], b = tris[std::size_t(t)][(k + 1) % 3];
+        h.push_back({std::min(a, b), std::max(a, b), a, t});
+      }
+    }
+    std::sort(h.begin(), h.end());
+    return h;
+  };
+  std::vector<std::array<int, 2>> bnd;  // boundary edges a→b (domain on the left), sorted
+  for (const auto& e : placement.boundaryEdges) bnd.push_back({e.a, e.b});
+  std::sort(bnd.begin(), bnd.end());
+  const auto isBoundary = [&](int a, int b) { return std::binary_search(bnd.begin(), bnd.end(), std::array<int, 2>{a, b}); };
+
+  // 1. Defects → marked vertices.
+  std::vector<char> mark(static_cast<std::size_t>(n), 0);
+  bool any = false;
+  auto markEdge = [&](int a, int b) {
+    mark[std::size_t(a)] = mark[std::size_t(b)] = 1;
+    any = true;
+  };
+  std::vector<char> covered(bnd.size(), 0);
+  {
+    const auto h = halves(consistent, nullptr);
+    for (std::size_t i = 0; i < h.size();) {
+      std::size_t j = i;
+      while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+      const std::size_t count = j - i;
+      const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;  // the first half-edge runs a→b
+      if (count == 1) {
+        const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
+        if (it != bnd.end() && *it == std::array<int, 2>{a, b}) covered[std::size_t(it - bnd.begin())] = 1;
+        else markEdge(a, b);
+      } else if (count > 2 || h[i].a == h[i + 1].a || isBoundary(h[i].lo, h[i].hi) || isBoundary(h[i].hi, h[i].lo)) {
+        markEdge(h[i].lo, h[i].hi);
+      }
+      i = j;
+    }
+  }
+  for (std::size_t k = 0; k < bnd.size(); ++k)
+    if (!covered[k]) markEdge(bnd[k][0], bnd[k][1]);
+  if (!any) return false;  // combinatorially sound: the failure was the area; leave it to the scaffold
+  // 2. Remove the triangles touching marked vertices, three rings in all.
+  const int nt = int(consistent.size());
+  std::vector<char> removed(static_cast<std::size_t>(nt), 0);
+  for (int ring = 0; ring < 3; ++ring) {
+    for (int t = 0; t < nt; ++t)
+      for (int v : consistent[std::size_t(t)]) removed[std::size_t(t)] |= mark[std::size_t(v)];
+    for (int t = 0; t < nt; ++t)
+      if (removed[std::size_t(t)])
+        for (int v : consistent[std::size_t(t)]) mark[std::size_t(v)] = 1;
+  }
+  // 3. The open region's boundary, oriented with the open side on the left, and its points.
+  std::vector<char> inKept(static_cast<std::size_t>(n), 0);
+  for (int t = 0; t < nt; ++t)
+    if (!removed[std::size_t(t)])
+      for (int v : consistent[std::size_t(t)]) inKept[std::size_t(v)] = 1;
+  std::vector<std::array<int, 2>> holeEdges;
+  std::fill(covered.begin(), covered.end(), 0);
+  {
+    const auto h = halves(consistent, &removed);
+    for (std::size_t i = 0; i < h.size();) {
+      std::size_t j = i;
+      while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+      if (j - i > 2 || (j - i == 2 && h[i].a == h[i + 1].a)) return false;  // kept triangles overlap
+      if (j - i == 1) {
+        const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;
+        const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
+        if (it != bnd.end() && *it == std::array<int, 2>{a, b}) covered[std::size_t(it - bnd.begin())] = 1;
+        else holeEdges.push_back({b, a});
+      }
+      i = j;
+    }
+  }
+  for (std::size_t k = 0; k < bnd.size(); ++k)
+    if (!covered[k]) holeEdges.push_back(bnd[k]);
+  std::vector<int> localOf(static_cast<std::size_t>(n), -1), globalOf;
+  auto take = [&](int v) {
+    if (localOf[std::size_t(v)] < 0) {
+      localOf[std::size_t(v)] = int(globalOf.size());
+      globalOf.push_back(v);
+    }
+  };
+  for (int v = 0; v < n; ++v)
+    if (!inKept[std::size_t(v)]) take(v);
+  for (const auto& e : holeEdges) {
+    take(e[0]);
+    take(e[1]);
+  }
+  if (globalOf.size() < 3) return false;
+  // 4. Triangulate the open region from its points.
+  std::vector<Vec2> sub(globalOf.size());
+  for (std::size_t k = 0; k < globalOf.size(); ++k) sub[k] = pos[std::size_t(globalOf[k])];
+  std::vector<std::array<int, 3>> fresh;
+  long swaps = 0;
+  try {
+    Triangulation tri(sub);
+    std::vector<std::array<int, 2>> local;
+    for (const auto& e : holeEdges) {
+      local.push_back({localOf[std::size_t(e[0])], localOf[std::size_t(e[1])]});
+      if (!tri.recoverEdge(local.back()[0], local.back()[1])) return false;
+    }
+    tri.classify(local);
+    const auto criterion = [&](int x, int z, int y, int w) {
+      const int X = globalOf[std::size_t(x)], Z = globalOf[std::size_t(z)], Y = globalOf[std::size_t(y)], W = globalOf[std::size_t(w)];
+      return swapCriterion(pos[X], pos[Z], pos[Y], pos[W], 0.25 * (met[X] + met[Z] + met[Y] + met[W]));
+    };
+    bool capHit = false;
+    swaps = tri.flipWhile(criterion, 20L * 3 * long(sub.size()) + 1000, capHit);
+    for (int t = 0; t < tri.numTriangleSlots(); ++t) {
+      if (!tri.inside(t)) continue;
+      auto v = tri.triangle(t);
+      for (int& x : v) x = globalOf[std::size_t(x)];
+      fresh.push_back(v);
+    }
+  } catch (const Error&) {
+    return false;  // an open region that is not a closed polygon: leave it to the scaffold
+  }
+  // 5. The mesh: kept + fresh triangles, nodes in no triangle dropped; it must validate.
+  std::vector<std::array<int, 3>> tris;
+  tris.reserve(std::size_t(nt) + fresh.size());
+  for (int t = 0; t < nt; ++t)
+    if (!removed[std::size_t(t)]) tris.push_back(consistent[std::size_t(t)]);
+  tris.insert(tris.end(), fresh.begin(), fresh.end());
+  std::vector<char> used(static_cast<std::size_t>(n), 0);
+  for (const auto& t : tris)
+    for (int v : t) used[std::size_t(v)] = 1;
+  std::vector<int> vertexOf(static_cast<std::size_t>(n), -1);
+  Mesh2 mesh;
+  std::vector<int> nodeOfVertex;
+  for (int i = 0; i < n; ++i) {
+    if (!used[std::size_t(i)]) continue;
+    vertexOf[std::size_t(i)] = int(nodeOfVertex.size());
+    nodeOfVertex.push_back(i);
+    mesh.vertices.push_back(pos[std::size_t(i)]);
+  }
+  for (auto t : tris) {
+    for (int& x : t) x = vertexOf[std::size_t(x)];
+    mesh.triangles.push_back(t);
+  }
+  for (const auto& e : placement.boundaryEdges) {
+    if (vertexOf[std::size_t(e.a)] < 0 || vertexOf[std::size_t(e.b)] < 0) return false;
+    mesh.boundaryEdges.push_back({vertexOf[std::size_t(e.a)], vertexOf[std::size_t(e.b)], e.ref});
+  }
+  if (!mesh.validate(area, 1e-9).ok) return false;
+  result.mesh = std::move(mesh);
+  result.nodeOfVertex = std::move(nodeOfVertex);
+  result.stats.droppedNodes = n - int(result.nodeOfVertex.size());
+  result.stats.repairedTriangles = 0;  // fresh triangles that are not consistent ones (min vertex first, sorted)
+  for (auto key : fresh) {
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    result.stats.repairedTriangles += !std::binary_search(consistent.begin(), consistent.end(), key);
+  }
+  result.stats.swaps += swaps;
+  result.validated = true;
+  return true;
+}
+
 } // namespace
 
 ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
@@ -329,6 +507,13 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
       result.mesh = std::move(un);
       result.nodeOfVertex.resize(n);
       std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
+      return result;
+    }
+    const auto t1 = Clock::now();
+    const bool repaired = options.localRepair && repairLocally(placement, consistent, area, result);
+    st.secondsRepair += since(t1);
+    if (repaired) {
+      st.localRepair = true;
       return result;
     }
   }

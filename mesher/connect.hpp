@@ -31,6 +31,7 @@ namespace ablmg::mesher {
 
 struct ConnectOptions {
   int threads = 0;  ///< 0 = OpenMP default; the result does not depend on it
+  bool localRepair = true;  ///< try step 4a before the whole-domain scaffold (off: always the scaffold)
 };
 
 struct ConnectStats {
@@ -45,6 +46,7 @@ struct ConnectStats {
   long failedRecoveries = 0;    ///< consistent-triangle edges the repair could not keep (overlaps)
   long swaps = 0;               ///< eq. (12) edge swaps done by the repair
   bool swapCapHit = false;      ///< the swap cap (20 per edge) stopped the repair's swaps
+  bool localRepair = false;     ///< the repair was local (step 4a), not the whole-domain scaffold
   long droppedNodes = 0;        ///< nodes outside the boundary polygon, not in the mesh
   double secondsLocalMeshes = 0;
   double secondsRepair = 0;     ///< validating the union, and the repair when it was needed

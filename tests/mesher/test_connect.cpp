@@ -141,6 +141,35 @@ TEST(Connect, RandomPolygonsWithHolesAndRandomMetricsAllValidate) {
   EXPECT_LT(double(repaired) / double(triangles), 0.01) << repaired << " of " << triangles;
 }
 
+TEST(Connect, LocalRepairAndScaffoldBothValidate) {
+  // The same placements connected twice: local repair first (step 4a) and the whole-domain
+  // scaffold only. Both must validate, and the local repair must handle some of the
+  // placements that needed a repair.
+  int local = 0, repairs = 0;
+  for (int seed = 1; seed <= kRandomCases; ++seed) {
+    const Domain d = randomDomainWithHole(std::uint64_t(seed));
+    const auto m = randomMetric(std::uint64_t(seed));
+    PlacementOptions po;
+    po.maxSteps = 300;
+    po.tolerance = 1e-2;
+    const PlacementResult p = placeNodes(d, *m, po);
+    ConnectOptions withLocal, scaffoldOnly;
+    scaffoldOnly.localRepair = false;
+    const ConnectResult a = connect(p, d, withLocal), b = connect(p, d, scaffoldOnly);
+    const auto va = a.mesh.validate(d.area(), 1e-9), vb = b.mesh.validate(d.area(), 1e-9);
+    ASSERT_TRUE(va.ok) << "seed " << seed << ": " << va.firstProblem;
+    ASSERT_TRUE(vb.ok) << "seed " << seed << ": " << vb.firstProblem;
+    EXPECT_FALSE(b.stats.localRepair);
+    if (b.stats.repairedTriangles > 0 || a.stats.localRepair) ++repairs;
+    if (a.stats.localRepair) {
+      ++local;
+      EXPECT_GT(a.stats.repairedTriangles + b.stats.repairedTriangles, 0) << "seed " << seed;
+    }
+  }
+  EXPECT_GT(repairs, 0);  // not vacuous: some placements needed a repair
+  EXPECT_GT(local, 0);    // and the local one handled at least one of them
+}
+
 TEST(Connect, ConstantMetricGivesAnAffineImageOfEquilateralTriangles) {
   const Metric2 m = Metric2::fromSizes(0.1, 0.025, 0.7);
   const MeshResult r = meshDomain(Domain::rectangle(0, 0, 1, 1), ConstantMetricField(m));
