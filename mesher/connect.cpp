@@ -308,17 +308,23 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
     int lo, hi, a, t;  // undirected key, start vertex of the directed edge, triangle
     bool operator<(const Half& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t; }
   };
+  // Half-edges in Half order: counting sort on lo, then each vertex's few sorted on their own.
   auto halves = [&](const std::vector<std::array<int, 3>>& tris, const std::vector<char>* skip) {
-    std::vector<Half> h;
-    h.reserve(3 * tris.size());
+    std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
+    for (int t = 0; t < int(tris.size()); ++t)
+      if (!skip || !(*skip)[std::size_t(t)])
+        for (int k = 0; k < 3; ++k) ++start[std::size_t(std::min(tris[std::size_t(t)][k], tris[std::size_t(t)][(k + 1) % 3])) + 1];
+    for (int v = 0; v < n; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+    std::vector<Half> h(static_cast<std::size_t>(start[std::size_t(n)]));
+    std::vector<int> fill(start.begin(), start.end() - 1);
     for (int t = 0; t < int(tris.size()); ++t) {
       if (skip && (*skip)[std::size_t(t)]) continue;
       for (int k = 0; k < 3; ++k) {
         const int a = tris[std::size_t(t)][k], b = tris[std::size_t(t)][(k + 1) % 3];
-        h.push_back({std::min(a, b), std::max(a, b), a, t});
+        h[std::size_t(fill[std::size_t(std::min(a, b))]++)] = {std::min(a, b), std::max(a, b), a, t};
       }
     }
-    std::sort(h.begin(), h.end());
+    for (int v = 0; v < n; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
     return h;
   };
   std::vector<std::array<int, 2>> bnd;  // boundary edges a→b (domain on the left), sorted
