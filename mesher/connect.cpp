@@ -182,7 +182,10 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   for (int i = 0; i < n; ++i) {
     if (!used[i]) continue;
     for (int j : adj.neighbours(i)) {
-      if (!used[j]) continue;
+      // Each pair is decided once, from its smaller node, and linked both ways below: the
+      // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
+      // floating point, and links must be symmetric (markDead writes both directions).
+      if (j <= i || !used[j]) continue;
       const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
       if (!boundaryLink) {
         if (nextB[i] >= 0 && !inSector(i, j)) continue;
@@ -195,6 +198,9 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
       rowsOf[i].push_back(j);
     }
   }
+  for (int i = 0; i < n; ++i)
+    for (int j : rowsOf[i])
+      if (j > i) rowsOf[j].push_back(i);
   // Boundary edges are links even if the adjacency radius missed them.
   for (const auto& e : placement.boundaryEdges) {
     for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
@@ -216,15 +222,15 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     });
   }
   rowsOf = {};
-  st.longLinksDropped = longLinks / 2;
+  st.longLinksDropped = longLinks;
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
 
   // 2. Deleting non-satellite nodes (eq. 12), in rounds until nothing changes.
   std::vector<std::uint8_t> kill(links.ids.size(), 0);
   const auto markDead = [&](int i, int j) {
-    std::atomic_ref<std::uint8_t>(kill[links.find(i, j)]).store(1, std::memory_order_relaxed);
-    std::atomic_ref<std::uint8_t>(kill[links.find(j, i)]).store(1, std::memory_order_relaxed);
+    for (const int e : {links.find(i, j), links.find(j, i)})
+      if (e >= 0) std::atomic_ref<std::uint8_t>(kill[std::size_t(e)]).store(1, std::memory_order_relaxed);
   };
   for (int round = 0; round < 50; ++round) {
     long tests = 0, crossings = 0;
