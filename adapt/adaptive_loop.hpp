@@ -40,7 +40,7 @@ struct AdaptOptions {
   std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
   int cycles = 0;                     ///< 0 = targetVertices.size(); more repeats the last N
   HessianMethod hessian = HessianMethod::LeastSquares;
-  MetricOptions metric;               ///< p, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
+  MetricOptions metric;               ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
   double hgrad = 0;                   ///< > 1: gradation (gradation.hpp); ≤ 0: off
   mesher::MeshOptions mesh;
   fem::SolveOptions solve;

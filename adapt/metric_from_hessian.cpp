@@ -9,6 +9,15 @@
 
 namespace ablmg::adapt {
 
+ErrorNorm parseErrorNorm(const std::string& name) {
+  if (name == "l2") return ErrorNorm::L2;
+  if (name == "h1") return ErrorNorm::H1;
+  ABLMG_REQUIRE(false, "unknown error norm '" << name << "' (valid: l2, h1)");
+  return ErrorNorm::L2;
+}
+
+std::string toString(ErrorNorm norm) { return norm == ErrorNorm::L2 ? "l2" : "h1"; }
+
 void validate(const MetricOptions& o) {
   ABLMG_REQUIRE(std::isfinite(o.targetVertices) && o.targetVertices > 0,
                 "metric options: targetVertices must be > 0 (got " << o.targetVertices << ")");
@@ -16,6 +25,9 @@ void validate(const MetricOptions& o) {
   ABLMG_REQUIRE(o.hmin >= 0 && std::isfinite(o.hmin), "metric options: hmin must be >= 0 (got " << o.hmin << ")");
   ABLMG_REQUIRE(o.hmax > o.hmin, "metric options: hmax must be > hmin (got hmax " << o.hmax << ", hmin " << o.hmin << ")");
   ABLMG_REQUIRE(o.maxAnisotropy >= 1, "metric options: maxAnisotropy must be >= 1 (got " << o.maxAnisotropy << ")");
+  ABLMG_REQUIRE(o.norm == ErrorNorm::L2 || o.norm == ErrorNorm::H1, "metric options: unknown norm " << int(o.norm));
+  ABLMG_REQUIRE(!o.shapeBlend || (*o.shapeBlend >= 0 && *o.shapeBlend <= 1),
+                "metric options: shapeBlend must be in [0, 1] (got " << o.shapeBlend.value_or(0) << ")");
   ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1, "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
 }
 
@@ -82,16 +94,29 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
   }
   // A field with H ≡ 0 (u linear): any isotropic metric is optimal; use the identity shape.
   const double floor = hmaxAbs > 0 ? o.eigenFloor * hmaxAbs : 1.0;
+  // Unscaled metric S(x) = det|H|^δ · (|H|/√det|H|)^s, so that M = D S and √det S = det|H|^δ:
+  // L2 (Lp): δ = p/(2p+2), s = 1, i.e. S = det|H|^(−1/(2p+2)) |H|;  H1 (W^{1,p}): δ = p/(p+2),
+  // s = 2, i.e. S = det|H|^(p/(p+2)) |H|²/det|H|;  p = ∞: δ = 1/2 (L2), 1 (H1);  s = 1 + shapeBlend if set.
   const bool pInf = std::isinf(o.p);
-  // Unscaled shape S(x) = det|H|^(−1/(2p+2)) |H|, so that M = D S.
+  const bool h1 = o.norm == ErrorNorm::H1;
+  const double delta = h1 ? (pInf ? 1.0 : o.p / (o.p + 2)) : (pInf ? 0.5 : o.p / (2 * o.p + 2));
+  const double s = 1 + o.shapeBlend.value_or(h1 ? 1.0 : 0.0);
   std::vector<Hessian2> shape(n);
   std::vector<double> sqrtDet(n);
   for (int v = 0; v < n; ++v) {
     const Hessian2 a = absoluteHessian(hessians[v], floor);
-    const double det = a.determinant();
-    const double factor = pInf ? 1.0 : std::pow(det, -1.0 / (2 * o.p + 2));
-    shape[v] = factor * a;
-    sqrtDet[v] = std::sqrt(shape[v].determinant());
+    if (s == 1 && !h1) {  // the Lp metric, computed exactly as before the H1 option (bitwise same meshes)
+      shape[v] = (pInf ? 1.0 : std::pow(a.determinant(), -1.0 / (2 * o.p + 2))) * a;
+      sqrtDet[v] = std::sqrt(shape[v].determinant());
+      continue;
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+    es.computeDirect(a);
+    const Eigen::Vector2d l = es.eigenvalues();  // both ≥ floor > 0
+    const double det = l[0] * l[1], root = std::sqrt(det), rho = std::pow(det, delta);
+    const Eigen::Vector2d m(rho * std::pow(l[0] / root, s), rho * std::pow(l[1] / root, s));
+    shape[v] = es.eigenvectors() * m.asDiagonal() * es.eigenvectors().transpose();
+    sqrtDet[v] = std::sqrt(m[0] * m[1]);
   }
   const double target = complexityForVertices(o.targetVertices);
   double d = target / integrate(mesh, sqrtDet);

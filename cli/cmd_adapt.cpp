@@ -1,13 +1,17 @@
 // ablmg adapt: the adaptive solve loop (issue 11) on a library problem, with reports.
 //
 //   ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
-//               [--p 2|1|inf] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
+//               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. Cycle k targets N_k vertices (the last N repeats when K exceeds the list).
 // --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
+// --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
+// (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
+// meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
+// shape to (|H|/√det|H|)^(1+W) (0 the Lp shape, 1 the H1 shape) keeping the norm's density.
 //
 // Writes DIR/convergence.csv (the header kCsvHeader, more columns after it, one row per
 // cycle), DIR/convergence.json (options, rows, fitted rates), DIR/cycle_K.vtu (mesh, u_h,
@@ -96,6 +100,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       haveTargets = true;
     } else if (key == "--p") {
       a.options.metric.p = parseNumber(value(), "adapt: --p");
+    } else if (key == "--norm") {
+      a.options.metric.norm = adapt::parseErrorNorm(value());
+    } else if (key == "--shape-blend") {
+      a.options.metric.shapeBlend = parseNumber(value(), "adapt: --shape-blend");
     } else if (key == "--hgrad") {
       a.options.hgrad = parseNumber(value(), "adapt: --hgrad");
     } else if (key == "--hessian") {
@@ -124,7 +132,7 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.outDir = value();
     } else {
       ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
-                                                       << "' (valid: --problem --param --cycles --target-vertices --p --hgrad "
+                                                       << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
                                                           "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --uniform --vtu --medit --out-dir)");
     }
   }
@@ -171,7 +179,9 @@ int runAdapt(const std::vector<std::string>& argv) {
   std::cout << "\n  cycles " << (a.options.cycles > 0 ? a.options.cycles : int(a.options.targetVertices.size()))
             << ", target vertices";
   for (double n : a.options.targetVertices) std::cout << " " << n;
-  std::cout << "\n  hessian " << adapt::toString(a.options.hessian) << ", p " << a.options.metric.p << ", hmin "
+  std::cout << "\n  hessian " << adapt::toString(a.options.hessian) << ", p " << a.options.metric.p << ", norm "
+            << adapt::toString(a.options.metric.norm) << ", shape blend "
+            << (a.options.metric.shapeBlend ? fmt("%g", *a.options.metric.shapeBlend) : std::string("default")) << ", hmin "
             << a.options.metric.hmin << ", hmax " << a.options.metric.hmax << ", max anisotropy "
             << a.options.metric.maxAnisotropy << ", hgrad " << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off")
             << ", seed " << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
@@ -228,6 +238,8 @@ int runAdapt(const std::vector<std::string>& argv) {
                   {"cycles", int(report.cycles.size())},
                   {"hessian", adapt::toString(a.options.hessian)},
                   {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
+                  {"norm", adapt::toString(a.options.metric.norm)},
+                  {"shape_blend", a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
                   {"hmin", a.options.metric.hmin},
                   {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
                   {"max_anisotropy", a.options.metric.maxAnisotropy},

@@ -1,11 +1,14 @@
-// Mirrors adapt/metric_from_hessian.hpp: the requested complexity, the bounds, the Lp scaling.
+// Mirrors adapt/metric_from_hessian.hpp: the requested complexity, the bounds, the Lp scaling,
+// and the H1 (W^{1,p} seminorm) metric: shape |H|²/det|H|, density det|H|^(p/(p+2)).
 #include "adapt/metric_from_hessian.hpp"
 #include "core/error.hpp"
 #include "fem/structured_mesh.hpp"
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 using namespace ablmg;
 using namespace ablmg::adapt;
@@ -28,37 +31,45 @@ std::vector<Hessian2> frontHessians(const Mesh2& mesh) {
 TEST(MetricFromHessian, ComplexityMatchesTarget) {
   const Mesh2 mesh = fem::unitSquareMesh(40, 0.1, 3);
   const auto h = frontHessians(mesh);
-  for (double p : {1.0, 2.0, std::numeric_limits<double>::infinity()}) {
-    for (double n : {1000.0, 20000.0}) {
-      MetricOptions o;
-      o.targetVertices = n;
-      o.p = p;
-      const auto m = metricFromHessians(mesh, h, o);
-      EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(n), 1.0, 2e-3) << "p " << p << " N " << n;
+  for (ErrorNorm norm : {ErrorNorm::L2, ErrorNorm::H1}) {
+    for (double p : {1.0, 2.0, std::numeric_limits<double>::infinity()}) {
+      for (double n : {1000.0, 20000.0}) {
+        MetricOptions o;
+        o.targetVertices = n;
+        o.p = p;
+        o.norm = norm;
+        const auto m = metricFromHessians(mesh, h, o);
+        EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(n), 1.0, 2e-3)
+            << toString(norm) << " p " << p << " N " << n;
+      }
     }
   }
 }
 
 TEST(MetricFromHessian, ComplexityMatchesTargetWithActiveBounds) {
   const Mesh2 mesh = fem::unitSquareMesh(40, 0.1, 3);
-  MetricOptions o;
-  o.targetVertices = 5000;
-  o.hmin = 0.004;
-  o.hmax = 0.03;
-  o.maxAnisotropy = 2;
-  const auto m = metricFromHessians(mesh, frontHessians(mesh), o);
-  EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(5000), 1.0, 2e-3);
-  int hitMax = 0, hitAniso = 0;
-  for (const auto& x : m) {
-    const auto e = x.eigen();
-    EXPECT_GE(e.h2, o.hmin * (1 - 1e-9));
-    EXPECT_LE(e.h1, o.hmax * (1 + 1e-9));
-    EXPECT_LE(e.h1 / e.h2, o.maxAnisotropy * (1 + 1e-9));
-    hitMax += e.h1 > 0.999 * o.hmax;
-    hitAniso += e.h1 / e.h2 > 0.999 * o.maxAnisotropy;
+  for (ErrorNorm norm : {ErrorNorm::L2, ErrorNorm::H1}) {
+    SCOPED_TRACE(toString(norm));
+    MetricOptions o;
+    o.norm = norm;
+    o.targetVertices = 5000;
+    o.hmin = 0.004;
+    o.hmax = 0.03;
+    o.maxAnisotropy = 2;
+    const auto m = metricFromHessians(mesh, frontHessians(mesh), o);
+    EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(5000), 1.0, 2e-3);
+    int hitMax = 0, hitAniso = 0;
+    for (const auto& x : m) {
+      const auto e = x.eigen();
+      EXPECT_GE(e.h2, o.hmin * (1 - 1e-9));
+      EXPECT_LE(e.h1, o.hmax * (1 + 1e-9));
+      EXPECT_LE(e.h1 / e.h2, o.maxAnisotropy * (1 + 1e-9));
+      hitMax += e.h1 > 0.999 * o.hmax;
+      hitAniso += e.h1 / e.h2 > 0.999 * o.maxAnisotropy;
+    }
+    EXPECT_GT(hitMax, 0);    // the bounds were active, so the test means something
+    EXPECT_GT(hitAniso, 0);
   }
-  EXPECT_GT(hitMax, 0);    // the bounds were active, so the test means something
-  EXPECT_GT(hitAniso, 0);
 }
 
 TEST(MetricFromHessian, LpScalingOfAConstantHessian) {
@@ -75,6 +86,94 @@ TEST(MetricFromHessian, LpScalingOfAConstantHessian) {
     EXPECT_NEAR(x.m11(), 100 * d, 1e-9 * 100 * d);
     EXPECT_NEAR(x.m22(), 4 * d, 1e-9 * 100 * d);
     EXPECT_NEAR(x.m12(), 0, 1e-9 * d);
+  }
+}
+
+namespace {
+Hessian2 rotated(double a, double b, double theta) {  // R diag(a, b) Rᵀ, R the rotation by theta
+  Eigen::Matrix2d r;
+  r << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
+  return r * Eigen::Vector2d(a, b).asDiagonal() * r.transpose();
+}
+} // namespace
+
+TEST(MetricFromHessian, H1MetricOfAConstantHessian) {
+  // Constant H = R diag(−100, 4) Rᵀ: M_{1,2} = D |H|²/√det|H| with D = C / ∫ √det|H| = C/20, so
+  // M = C R diag(10⁴/400, 16/400) Rᵀ = C R diag(25, 0.04) Rᵀ: eigenvalue ratio (λ1/λ2)² = 625
+  // (the Lp metric's is λ1/λ2 = 25), eigenvectors those of H, complexity C on the unit square.
+  const Mesh2 mesh = fem::unitSquareMesh(6, 0.2, 1);
+  const double theta = 0.3;
+  std::vector<Hessian2> h(mesh.numVertices(), rotated(-100, 4, theta));
+  MetricOptions o;
+  o.targetVertices = 1000;
+  o.norm = ErrorNorm::H1;
+  const double c = complexityForVertices(1000);
+  const Hessian2 expected = rotated(25 * c, 0.04 * c, theta);
+  for (const auto& x : metricFromHessians(mesh, h, o)) {
+    EXPECT_NEAR(x.m11(), expected(0, 0), 1e-9 * 25 * c);
+    EXPECT_NEAR(x.m12(), expected(0, 1), 1e-9 * 25 * c);
+    EXPECT_NEAR(x.m22(), expected(1, 1), 1e-9 * 25 * c);
+    const auto e = x.eigen();
+    EXPECT_NEAR(e.h1 / e.h2, 25.0, 1e-9);  // size ratio λ1/λ2 (Lp: √(λ1/λ2) = 5)
+  }
+  // Lp for comparison: eigenvalue ratio λ1/λ2 = 25, i.e. size ratio 5.
+  o.norm = ErrorNorm::L2;
+  for (const auto& x : metricFromHessians(mesh, h, o)) EXPECT_NEAR(x.eigen().h1 / x.eigen().h2, 5.0, 1e-9);
+}
+
+TEST(MetricFromHessian, DensityAndShapeExponentsBetweenTwoRegions) {
+  // Two Hessians on the two halves of the square, det|H| 4 (left) and 256 (right), anisotropy
+  // 4 and 4 with different axes. Vertex by vertex (the global D cancels in ratios):
+  //   √det M_right / √det M_left = (256/4)^δ,  δ = p/(p+2) (H1), p/(2p+2) (L2),
+  //   eigenvalue ratio of M = (λ1/λ2)^(1+w),  w = 1 (H1), 0 (L2), or shapeBlend.
+  const Mesh2 mesh = fem::unitSquareMesh(8, 0.0, 1);
+  std::vector<Hessian2> h(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    h[v] = mesh.vertices[v].x() < 0.5 ? rotated(1, 4, 0) : rotated(32, -8, 1.0);  // det 4, det 256
+  struct Case {
+    ErrorNorm norm;
+    double p;
+    std::optional<double> blend;
+    double delta, s;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Case& k : {Case{ErrorNorm::H1, 2, {}, 0.5, 2}, Case{ErrorNorm::H1, 4, {}, 4.0 / 6, 2},
+                        Case{ErrorNorm::H1, inf, {}, 1.0, 2}, Case{ErrorNorm::L2, 2, {}, 1.0 / 3, 1},
+                        Case{ErrorNorm::L2, 4, {}, 0.4, 1}, Case{ErrorNorm::L2, 4, 0.5, 0.4, 1.5},
+                        Case{ErrorNorm::H1, 2, 0.0, 0.5, 1}}) {
+    MetricOptions o;
+    o.targetVertices = 3000;
+    o.norm = k.norm;
+    o.p = k.p;
+    o.shapeBlend = k.blend;
+    SCOPED_TRACE(toString(k.norm) + " p " + std::to_string(k.p) + " blend " + std::to_string(k.blend.value_or(-1)));
+    const auto m = metricFromHessians(mesh, h, o);
+    double left = 0, right = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      const double x = mesh.vertices[v].x(), sq = std::sqrt(m[v].det());
+      const auto e = m[v].eigen();
+      EXPECT_NEAR(std::log(e.h1 / e.h2), 0.5 * k.s * std::log(4.0), 1e-9);  // size ratio (λ1/λ2)^(s/2)
+      (x < 0.5 ? left : right) = sq;
+    }
+    EXPECT_NEAR(std::log(right / left), k.delta * std::log(64.0), 1e-9);
+  }
+}
+
+TEST(MetricFromHessian, ZeroShapeBlendIsTheLpMetric) {
+  // The general formula det|H|^δ (|H|/√det|H|)^(1+w) at w = 0 is the Lp metric, to round-off.
+  const Mesh2 mesh = fem::unitSquareMesh(30, 0.1, 5);
+  const auto h = frontHessians(mesh);
+  MetricOptions o;
+  o.targetVertices = 4000;
+  o.p = 4;
+  const auto a = metricFromHessians(mesh, h, o);
+  o.shapeBlend = 0.0;
+  const auto b = metricFromHessians(mesh, h, o);
+  for (std::size_t v = 0; v < a.size(); ++v) {
+    const double scale = std::max({std::abs(a[v].m11()), std::abs(a[v].m22()), 1.0});
+    EXPECT_NEAR(a[v].m11(), b[v].m11(), 1e-9 * scale);
+    EXPECT_NEAR(a[v].m12(), b[v].m12(), 1e-9 * scale);
+    EXPECT_NEAR(a[v].m22(), b[v].m22(), 1e-9 * scale);
   }
 }
 
@@ -117,6 +216,14 @@ TEST(MetricFromHessian, RejectsBadOptions) {
   o = {};
   o.targetVertices = -3;
   EXPECT_THROW(metricFromHessians(mesh, h, o), InputError);
+  o = {};
+  o.shapeBlend = 1.5;
+  EXPECT_THROW(metricFromHessians(mesh, h, o), InputError);
+  o.shapeBlend = -0.1;
+  EXPECT_THROW(metricFromHessians(mesh, h, o), InputError);
+  EXPECT_THROW(parseErrorNorm("h2"), InputError);
+  EXPECT_EQ(parseErrorNorm("h1"), ErrorNorm::H1);
+  EXPECT_EQ(toString(parseErrorNorm("l2")), "l2");
   h.pop_back();
   EXPECT_THROW(metricFromHessians(mesh, h, MetricOptions{}), InputError);
 }
