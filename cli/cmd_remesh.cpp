@@ -17,11 +17,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <future>
 #include <iostream>
-#include <array>
-#include <climits>
-#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 namespace ablmg::cli {
@@ -40,7 +40,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   Node placement stops early on a quality plateau (plateauSteps = 10, plateauGain = 0.01; see
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
   -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
-                   >= 2 also the time of every phase (read, gradation, placement, connection, write)
+                   >= 2 also the time of every phase (read, gradation, domain, background
+                   field, placement, connection, validation, write)
   --seed N         placement seed (default 1)
   -h, --help       this text
 )";
@@ -57,62 +58,91 @@ double parseNumber(const std::string& flag, const std::string& v) {
   return x;
 }
 
-/// The input mesh's boundary (edges in exactly one triangle, oriented with the mesh on the
-/// left) chained into loops; refs from the file's Edges (1 where an edge has none). The loop
-/// of largest area is the outer one. Loops are `smooth` so the mesher places its own boundary
-/// nodes and keeps only corners (ref changes, turns > 30°).
-Domain domainFromBoundary(const Mesh2& mesh, const std::string& name) {
-  // Boundary edges: undirected edges of exactly one triangle (sorted (lo, hi, a, b) records).
-  struct DirectedEdge {
-    int lo, hi, a, b;
-    bool operator<(const DirectedEdge& o) const { return std::tie(lo, hi, a, b) < std::tie(o.lo, o.hi, o.a, o.b); }
+/// The boundary as a successor map: next[a] = b for each boundary edge a→b (−1 elsewhere),
+/// nextRef[a] = its ref.
+struct BoundaryChain {
+  std::vector<int> next, nextRef;
+};
+
+/// The edges in exactly one triangle, oriented as in it, in triangle order, with the refs of
+/// the file's Edges (a repeated edge takes its last ref; 1 where there is none). Undirected
+/// edges are grouped by their smaller vertex (counting sort, O(n), no std::map).
+BoundaryChain chainByCounting(const Mesh2& mesh, const std::string& name) {
+  const int nv = mesh.numVertices();
+  const auto sz = [](int i) { return static_cast<std::size_t>(i); };
+  std::vector<int> rowStart(sz(nv) + 1, 0), his(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++rowStart[sz(std::min(t[k], t[(k + 1) % 3])) + 1];
+  for (int v = 0; v < nv; ++v) rowStart[sz(v) + 1] += rowStart[sz(v)];
+  {
+    std::vector<int> fill(rowStart.begin(), rowStart.end() - 1);
+    for (const auto& t : mesh.triangles)
+      for (int k = 0; k < 3; ++k) his[sz(fill[sz(std::min(t[k], t[(k + 1) % 3]))]++)] = std::max(t[k], t[(k + 1) % 3]);
+  }
+  const auto trianglesOf = [&](int lo, int hi) {  // number of triangles with the edge {lo, hi}
+    return std::count(his.begin() + rowStart[sz(lo)], his.begin() + rowStart[sz(lo) + 1], hi);
   };
-  std::vector<DirectedEdge> all;
-  all.reserve(3 * mesh.triangles.size());
+  std::unordered_map<std::uint64_t, int> refs;
+  refs.reserve(mesh.boundaryEdges.size());
+  const auto key = [](int lo, int hi) { return std::uint64_t(std::uint32_t(lo)) << 32 | std::uint32_t(hi); };
+  for (const auto& e : mesh.boundaryEdges) refs[key(std::min(e.a, e.b), std::max(e.a, e.b))] = e.ref;
+  BoundaryChain c{std::vector<int>(sz(nv), -1), std::vector<int>(sz(nv), 1)};
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      all.push_back({std::min(a, b), std::max(a, b), a, b});
+      if (trianglesOf(std::min(a, b), std::max(a, b)) != 1) continue;
+      ABLMG_REQUIRE(c.next[sz(a)] < 0, name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
+      const auto it = refs.find(key(std::min(a, b), std::max(a, b)));
+      c.next[sz(a)] = b;
+      c.nextRef[sz(a)] = it == refs.end() ? 1 : it->second;
     }
-  std::sort(all.begin(), all.end());
-  std::vector<std::array<int, 3>> refs;  // (lo, hi, ref) of the file's Edges, sorted; the first ref wins
-  for (const auto& e : mesh.boundaryEdges) refs.push_back({std::min(e.a, e.b), std::max(e.a, e.b), e.ref});
-  std::stable_sort(refs.begin(), refs.end(), [](const auto& x, const auto& y) { return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1]; });
+  return c;
+}
+
+/// The input mesh's boundary (edges in exactly one triangle, oriented with the mesh on the
+/// left) chained into loops; refs from the file's Edges (1 where an edge has none). The loop
+/// of largest area is the outer one. Loops are `smooth` so the mesher places its own boundary
+/// nodes and keeps only corners (ref changes, turns > 30°). Loops start at their smallest
+/// vertex, in that order (deterministic output).
+/// `mesh` must be valid (Mesh2::validate): then its edges in exactly one triangle are the
+/// file's Edges, listed once and oriented as in their triangle (validate checks all three),
+/// and the chain comes straight from them. A vertex starting two of them (boundary loops
+/// that touch) sends it through chainByCounting, for the same message as before.
+Domain domainFromBoundary(const Mesh2& mesh, const std::string& name) {
   const int nv = mesh.numVertices();
-  std::vector<int> next(static_cast<std::size_t>(nv), -1), nextRef(static_cast<std::size_t>(nv), 1);  // a → b, ref
-  bool any = false;
-  for (std::size_t i = 0; i < all.size();) {
-    std::size_t j = i;
-    while (j < all.size() && all[j].lo == all[i].lo && all[j].hi == all[i].hi) ++j;
-    if (j - i == 1) {
-      const int a = all[i].a, b = all[i].b;
-      const auto it = std::lower_bound(refs.begin(), refs.end(), std::array<int, 3>{all[i].lo, all[i].hi, INT_MIN},
-                                       [](const auto& x, const auto& y) { return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1]; });
-      ABLMG_REQUIRE(next[std::size_t(a)] < 0, name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
-      next[std::size_t(a)] = b;
-      nextRef[std::size_t(a)] = it != refs.end() && (*it)[0] == all[i].lo && (*it)[1] == all[i].hi ? (*it)[2] : 1;
-      any = true;
-    }
-    i = j;
+  const auto sz = [](int i) { return static_cast<std::size_t>(i); };
+  BoundaryChain chain{std::vector<int>(sz(nv), -1), std::vector<int>(sz(nv), 1)};
+  bool any = false, pinched = false;
+  for (const auto& e : mesh.boundaryEdges) {
+    pinched = pinched || chain.next[sz(e.a)] >= 0;
+    chain.next[sz(e.a)] = e.b;
+    chain.nextRef[sz(e.a)] = e.ref;
+    any = true;
   }
+  if (pinched || !any) {
+    chain = chainByCounting(mesh, name);
+    any = std::any_of(chain.next.begin(), chain.next.end(), [](int b) { return b >= 0; });
+  }
+  const auto& next = chain.next;
+  const auto& nextRef = chain.nextRef;
   ABLMG_REQUIRE(any, name << ": mesh has no boundary edges");
   std::vector<BoundaryLoop> loops;
   std::vector<double> areas;
-  std::vector<char> used(static_cast<std::size_t>(nv), 0);
-  for (int start = 0; start < nv; ++start) {  // loops start at their smallest unused vertex
-    if (next[std::size_t(start)] < 0 || used[std::size_t(start)]) continue;
+  std::vector<char> used(sz(nv), 0);
+  for (int start = 0; start < nv; ++start) {  // loops start at their smallest vertex, in that order
+    if (next[sz(start)] < 0 || used[sz(start)]) continue;
     BoundaryLoop loop;
     loop.smooth = true;
     double area = 0;
     int v = start;
     do {
-      used[std::size_t(v)] = 1;
-      ABLMG_REQUIRE(next[std::size_t(v)] >= 0, name << ": boundary is not closed at vertex " << v + 1);
+      used[sz(v)] = 1;
+      ABLMG_REQUIRE(next[sz(v)] >= 0, name << ": boundary is not closed at vertex " << v + 1);
       loop.points.push_back(mesh.vertices[v]);
-      loop.tags.push_back(nextRef[std::size_t(v)]);
-      area += 0.5 * cross(mesh.vertices[v], mesh.vertices[next[std::size_t(v)]]);
-      v = next[std::size_t(v)];
-      ABLMG_REQUIRE(v == start || !used[std::size_t(v)], name << ": boundary loops touch at vertex " << v + 1);
+      loop.tags.push_back(nextRef[sz(v)]);
+      area += 0.5 * cross(mesh.vertices[v], mesh.vertices[next[sz(v)]]);
+      v = next[sz(v)];
+      ABLMG_REQUIRE(v == start || !used[sz(v)], name << ": boundary loops touch at vertex " << v + 1);
     } while (v != start);
     loops.push_back(std::move(loop));
     areas.push_back(area);
@@ -125,6 +155,32 @@ Domain domainFromBoundary(const Mesh2& mesh, const std::string& name) {
   } catch (const InputError& e) {
     throw InputError(name + ": boundary: " + e.what());
   }
+}
+
+/// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
+/// same order, but the .sol is read on a second thread while this one reads and validates the
+/// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
+std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol) {
+  auto solRead = std::async(std::launch::async, [&sol] { return io::readSol(sol); });
+  Mesh2 mesh;
+  bool valid = false;
+  try {
+    mesh = io::readMesh(in);
+    valid = mesh.validate().ok;
+  } catch (...) {
+    solRead.wait();
+    throw;
+  }
+  std::vector<Metric2> metrics;
+  bool solOk = true;
+  try {
+    metrics = solRead.get();
+  } catch (...) {
+    solOk = false;
+  }
+  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices());
+  if (!valid) mesh.requireValid(in);
+  return {std::move(mesh), std::move(metrics)};
 }
 
 int runRemesh(const std::vector<std::string>& args) {
@@ -183,9 +239,7 @@ int runRemesh(const std::vector<std::string>& args) {
   const auto tRead = Clock::now();
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line).
-  Mesh2 mesh = io::readMesh(in);
-  std::vector<Metric2> metrics = io::readSol(sol, mesh.numVertices());
-  mesh.requireValid(in);
+  auto [mesh, metrics] = readInputs(in, sol);
   // 2. Clamp sizes to [hmin, hmax].
   long clamped = 0;
   for (auto& m : metrics) {
@@ -203,26 +257,25 @@ int runRemesh(const std::vector<std::string>& args) {
   if (hgrad > 1) grad = adapt::limitGradation(mesh, metrics, {.hgrad = hgrad});
   // 4. Domain from the boundary; the input mesh + metric are the background field.
   const double secondsGradation = since(tGrad);
+  const auto tDomain = Clock::now();
   const Domain domain = domainFromBoundary(mesh, in);
+  const double secondsDomain = since(tDomain);
   const int inVertices = mesh.numVertices();
+  const auto tField = Clock::now();
   const BackgroundMetricField field(std::move(mesh), std::move(metrics));
+  const double secondsField = since(tField);
   const auto t0 = std::chrono::steady_clock::now();
   auto r = mesher::meshDomain(domain, field, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   // 5. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
   const auto tWrite = Clock::now();
-  io::writeMesh(out, r.mesh);
-  try {
-    io::writeSol(outSol, r.metric);
-  } catch (...) {
-    std::remove(out.c_str());
-    throw;
-  }
+  io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
   const double secondsWrite = since(tWrite);
   if (verbose >= 2) {
     const auto& p = r.stats.placement;
     const auto& c = r.stats.connect;
-    std::cout << "ablmg remesh: seconds: read " << secondsRead << ", gradation " << secondsGradation << ", placement "
+    std::cout << "ablmg remesh: seconds: read " << secondsRead << ", gradation " << secondsGradation << ", domain " << secondsDomain
+              << ", background field " << secondsField << ", placement "
               << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
               << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
               << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency " << p.secondsAdjacency << ", population "

@@ -18,7 +18,8 @@
 /// number, index out of range, non-positive size, non-SPD tensor, count mismatch). Garbage
 /// input throws, never crashes.
 ///
-/// Writing: `MeshVersionFormatted 2`, `Dimension 2` (or 3 for surfaces), 17 significant digits,
+/// Writing: `MeshVersionFormatted 2`, `Dimension 2` (or 3 for surfaces), each double in the
+/// shortest form that reads back to the same bits (std::to_chars: 0.1, 1e-300, 0.3333333333333333),
 /// atomically (temporary file + rename), readable by MMG, FreeFem++ and Gmsh.
 #include "core/mesh2.hpp"
 #include "core/metric2.hpp"
@@ -61,6 +62,10 @@ void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d
                       const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& triangleRefs = {});
 /// Tensor .sol (type 3, m11 m12 m22), one per vertex.
 void writeSol(const std::string& path, std::span<const Metric2> metrics);
+/// writeMesh then writeSol (same files), the two formatted in parallel (two threads). If the
+/// .sol cannot be written the new .mesh is removed again.
+void writeMeshAndSol(const std::string& meshPath, const Mesh2& mesh, const std::string& solPath,
+                     std::span<const Metric2> metrics);
 /// Scalar .sol (type 1), one value per vertex (e.g. sizes h, or a P1 solution).
 void writeScalarSol(const std::string& path, std::span<const double> values);
 

@@ -2,30 +2,49 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
-#include <cstdio>
-#include <memory>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace ablmg::io {
 
 TextScanner::TextScanner(std::string text, std::string name) : text_(std::move(text)), name_(std::move(name)) {}
 
 std::string readTextFile(const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-  ABLMG_REQUIRE(f, path << ": cannot open for reading");
+  // One read(2) into a string sized from fstat (a loop covers short reads, pipes and files
+  // that grow). A read error other than EISDIR throws; a directory reads as empty, as it did
+  // through std::ifstream (its parser then reports "empty file").
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  ABLMG_REQUIRE(fd >= 0, path << ": cannot open for reading");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
   std::string text;
-  char buf[1 << 16];
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) text.resize(std::size_t(st.st_size) + 1);
+  std::size_t used = 0;
   for (;;) {
-    const std::size_t got = std::fread(buf, 1, sizeof buf, f.get());
-    text.append(buf, got);
-    if (got < sizeof buf) break;
+    if (used == text.size()) text.resize(std::max<std::size_t>(2 * text.size(), 1 << 16));
+    const ssize_t got = ::read(fd, text.data() + used, text.size() - used);
+    if (got > 0) {
+      used += std::size_t(got);
+    } else if (got == 0) {
+      break;
+    } else if (errno == EINTR) {
+      continue;
+    } else {
+      ABLMG_REQUIRE(errno == EISDIR, path << ": read error");
+      break;
+    }
   }
-  ABLMG_REQUIRE(!std::ferror(f.get()), path << ": read error");
+  text.resize(used);
   return text;
 }
 
@@ -102,14 +121,29 @@ bool TextScanner::isNumber(std::string_view tok) {
   return end == s.c_str() + s.size();
 }
 
+/// The end of the number std::from_chars reads at text[pos], if it is the whole token (a
+/// delimiter or the end follows) and at most maxLength characters long; nullptr otherwise.
+template <class T> static const char* wholeNumber(const std::string& text, std::size_t pos, std::size_t maxLength, T& value) {
+  const char* first = text.data() + pos;
+  const char* last = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  if (ec != std::errc() || ptr == first || std::size_t(ptr - first) > maxLength || (ptr != last && !isDelimiter(*ptr))) return nullptr;
+  return ptr;
+}
+
 double TextScanner::nextDouble(const char* what) {
-  const auto tok = next(what);
-  // Fast path: a plain decimal number, parsed in place (std::from_chars, exact like strtod).
-  // Anything else ('+' sign, hex, out of range, garbage) takes strtod's path below, so the
-  // accepted syntax and the messages are strtod's.
+  // Fast path: std::from_chars straight from the text, correctly rounded as strtod is. A token
+  // it does not take whole ('+' signs, hex, inf/nan, over- and underflow, garbage, over 400
+  // characters) goes through strtod below, so the accepted syntax, the values and the
+  // messages stay strtod's.
+  skipSpace();
   double fast = 0;
-  const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), fast);
-  if (ec == std::errc() && ptr == tok.data() + tok.size() && std::isfinite(fast)) return fast;
+  if (const char* end = wholeNumber(text_, pos_, 400, fast); end && std::isfinite(fast)) {
+    lastLine_ = curLine_;
+    pos_ = std::size_t(end - text_.data());
+    return fast;
+  }
+  const auto tok = next(what);
   const std::string s(tok.substr(0, 400));
   char* end = nullptr;
   errno = 0;
@@ -121,10 +155,16 @@ double TextScanner::nextDouble(const char* what) {
 }
 
 long TextScanner::nextInt(const char* what, long lo, long hi) {
-  const auto tok = next(what);
+  // Fast path as in nextDouble; '+' signs, overflow, out-of-range values and garbage take
+  // strtol's path and its messages.
+  skipSpace();
   long fast = 0;
-  const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), fast);
-  if (ec == std::errc() && ptr == tok.data() + tok.size() && fast >= lo && fast <= hi) return fast;
+  if (const char* end = wholeNumber(text_, pos_, 40, fast); end && fast >= lo && fast <= hi) {
+    lastLine_ = curLine_;
+    pos_ = std::size_t(end - text_.data());
+    return fast;
+  }
+  const auto tok = next(what);
   const std::string s(tok.substr(0, 40));
   char* end = nullptr;
   errno = 0;

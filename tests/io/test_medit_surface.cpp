@@ -17,7 +17,7 @@ TEST(MeditSurface, RoundTripOfWriteSurfaceMesh) {
   const io::SurfaceMeshFile f = io::readSurfaceMesh(p);
   std::filesystem::remove(p);
   EXPECT_EQ(f.dimension, 3);
-  EXPECT_EQ(f.vertices, v);  // 17 significant digits: exact
+  EXPECT_EQ(f.vertices, v);  // shortest round-trip form: exact
   ASSERT_EQ(f.triangles.size(), 1u);
   EXPECT_EQ(f.triangles[0], (std::array<int, 3>{0, 2, 1}));  // file orientation kept
   EXPECT_EQ(f.triangleRefs, std::vector<int>{7});
