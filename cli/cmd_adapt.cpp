@@ -167,7 +167,24 @@ UniformPoint uniformRun(const fem::TestProblem& p, double n) {
   return {double(mesh.numVertices()), err.l2, err.h1};
 }
 
+const char* kAdaptHelp = R"(usage: ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
+                   [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
+                   [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
+                   [--warm-start on|off] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+
+The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
+fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...). Cycle k targets N_k vertices
+(the last N repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
+DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
+Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
+)";
+
 int runAdapt(const std::vector<std::string>& argv) {
+  for (const auto& x : argv)
+    if (x == "-h" || x == "--help") {
+      std::cout << kAdaptHelp;
+      return 0;
+    }
   Args a = parseArgs(argv);
   const fem::TestProblem problem = fem::makeProblem(a.problem, a.params);
   namespace fs = std::filesystem;

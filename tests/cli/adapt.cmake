@@ -57,7 +57,9 @@ foreach(case
     "bad_p|--problem wavefront --target-vertices 500 --p 0.5|p must be >= 1"
     "bad_hgrad|--problem wavefront --target-vertices 500 --hgrad 0.9|hgrad must be > 1"
     "bad_hessian|--problem wavefront --target-vertices 500 --hessian cubic|unknown Hessian recovery method 'cubic'"
-    "unknown_flag|--problem wavefront --target-vertices 500 --frobnicate 1|unknown argument '--frobnicate'")
+    "unknown_flag|--problem wavefront --target-vertices 500 --frobnicate 1|unknown argument '--frobnicate'"
+    "bad_norm|--problem wavefront --target-vertices 500 --norm h2|norm"
+    "bad_shape_blend|--problem wavefront --target-vertices 500 --shape-blend 2|shape")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)
   list(GET _parts 1 _args)
@@ -73,3 +75,6 @@ add_test(NAME cli_adapt_success
                  "-DARGS=--problem wavefront --target-vertices 300,600" -DOUTDIR=${_dir}/success
                  -P ${CMAKE_CURRENT_LIST_FILE})
 set_tests_properties(cli_adapt_success PROPERTIES LABELS cli)
+
+add_test(NAME cli_adapt_help COMMAND $<TARGET_FILE:ablmg> adapt --help)
+set_tests_properties(cli_adapt_help PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "usage: ablmg adapt --problem NAME")
