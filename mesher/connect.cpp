@@ -336,7 +336,11 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
   std::vector<std::array<int, 2>> bnd;  // boundary edges a→b (domain on the left), sorted
   for (const auto& e : placement.boundaryEdges) bnd.push_back({e.a, e.b});
   std::sort(bnd.begin(), bnd.end());
-  const auto isBoundary = [&](int a, int b) { return std::binary_search(bnd.begin(), bnd.end(), std::array<int, 2>{a, b}); };
+  // Index of the boundary edge a→b in bnd, or −1.
+  const auto boundaryIndex = [&](int a, int b) {
+    const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
+    return it != bnd.end() && *it == std::array<int, 2>{a, b} ? int(it - bnd.begin()) : -1;
+  };
 
   // 1. Defects → marked vertices.
   std::vector<char> mark(static_cast<std::size_t>(n), 0);
@@ -354,10 +358,10 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
       const std::size_t count = j - i;
       const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;  // the first half-edge runs a→b
       if (count == 1) {
-        const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
-        if (it != bnd.end() && *it == std::array<int, 2>{a, b}) covered[std::size_t(it - bnd.begin())] = 1;
+        const int e = boundaryIndex(a, b);
+        if (e >= 0) covered[std::size_t(e)] = 1;
         else markEdge(a, b);
-      } else if (count > 2 || h[i].a == h[i + 1].a || isBoundary(h[i].lo, h[i].hi) || isBoundary(h[i].hi, h[i].lo)) {
+      } else if (count > 2 || h[i].a == h[i + 1].a || boundaryIndex(h[i].lo, h[i].hi) >= 0 || boundaryIndex(h[i].hi, h[i].lo) >= 0) {
         markEdge(h[i].lo, h[i].hi);
       }
       i = j;
@@ -391,8 +395,8 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
       if (j - i > 2 || (j - i == 2 && h[i].a == h[i + 1].a)) return false;  // kept triangles overlap
       if (j - i == 1) {
         const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;
-        const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
-        if (it != bnd.end() && *it == std::array<int, 2>{a, b}) covered[std::size_t(it - bnd.begin())] = 1;
+        const int e = boundaryIndex(a, b);
+        if (e >= 0) covered[std::size_t(e)] = 1;
         else holeEdges.push_back({b, a});
       }
       i = j;
