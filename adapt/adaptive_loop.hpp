@@ -42,7 +42,18 @@ struct AdaptOptions {
   HessianMethod hessian = HessianMethod::LeastSquares;
   MetricOptions metric;               ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
   double hgrad = 0;                   ///< > 1: gradation (gradation.hpp); ≤ 0: off
-  mesher::MeshOptions mesh;
+  /// The mesher's options. The loop's default turns the initial lattice so that one row of
+  /// bubbles runs along each node's short-size direction (LatticeOrientation::ShortAxis, the
+  /// Hessian's steep eigenvector): at equal vertex count on the wave front (α = 20, p = 4,
+  /// 2·10³–1.1·10⁵ vertices) the H1 error falls from 0.98–1.01× to 0.87–0.96× FreeFem's and the
+  /// L2 error from 0.71–0.75× to 0.50–0.63× (README). The P1 gradient error on a triangle that is
+  /// equilateral in the metric still depends on its orientation; the bubble dynamics keeps the
+  /// orientation it starts from (the forces do not depend on it).
+  mesher::MeshOptions mesh = [] {
+    mesher::MeshOptions m;
+    m.placement.lattice.orientation = mesher::LatticeOrientation::ShortAxis;
+    return m;
+  }();
   fem::SolveOptions solve;
   int errorDegree = 8;                ///< quadrature degree of the error norms (fem/error_norms.hpp)
   /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.

@@ -3,7 +3,7 @@
 //   ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
-//               [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+//               [--lattice short|axes|long] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. Cycle k targets N_k vertices (the last N repeats when K exceeds the list).
@@ -126,6 +126,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
     } else if (key == "--warm-start") {
       a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
+    } else if (key == "--lattice") {
+      a.options.mesh.placement.lattice.orientation = mesher::parseLatticeOrientation(value());
     } else if (key == "--medit") {
       a.medit = parseOnOff(value(), "adapt: --medit");
     } else if (key == "--out-dir") {
@@ -133,7 +135,7 @@ Args parseArgs(const std::vector<std::string>& args) {
     } else {
       ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
                                                        << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --uniform --vtu --medit --out-dir)");
+                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice --uniform --vtu --medit --out-dir)");
     }
   }
   ABLMG_REQUIRE(!a.problem.empty(), "adapt: --problem NAME is required");
@@ -170,13 +172,16 @@ UniformPoint uniformRun(const fem::TestProblem& p, double n) {
 const char* kAdaptHelp = R"(usage: ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
-                   [--warm-start on|off] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+                   [--warm-start on|off] [--lattice short|axes|long] [--uniform on|off] [--vtu on|off]
+                   [--medit on|off] [--out-dir DIR]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
 fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...). Cycle k targets N_k vertices
 (the last N repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
+--lattice: the initial bubble lattice has one row along each node's short-size direction
+(short, the default here), the x axis's image (axes) or the long-size direction (long).
 )";
 
 int runAdapt(const std::vector<std::string>& argv) {
@@ -201,7 +206,8 @@ int runAdapt(const std::vector<std::string>& argv) {
             << (a.options.metric.shapeBlend ? fmt("%g", *a.options.metric.shapeBlend) : std::string("default")) << ", hmin "
             << a.options.metric.hmin << ", hmax " << a.options.metric.hmax << ", max anisotropy "
             << a.options.metric.maxAnisotropy << ", hgrad " << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off")
-            << ", seed " << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
+            << ", lattice " << mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation) << ", seed "
+            << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
 
   // 2. The loop; each cycle prints its line and writes its .vtu.
   Mesh2 finalMesh;
@@ -262,6 +268,7 @@ int runAdapt(const std::vector<std::string>& argv) {
                   {"max_anisotropy", a.options.metric.maxAnisotropy},
                   {"hgrad", a.options.hgrad},
                   {"warm_start", a.options.warmStart},
+                  {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
                   {"seed", a.options.mesh.placement.seed}};
   for (const auto& r : report.cycles)
     j["cycles"].push_back({{"cycle", r.cycle},        {"vertices", r.vertices},   {"triangles", r.triangles},

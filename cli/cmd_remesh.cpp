@@ -43,6 +43,9 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, validation, write)
   --seed N         placement seed (default 1)
+  --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
+                   along each node's short-size direction: lower FE errors for Hessian
+                   metrics, see README), long
   -h, --help       this text
 )";
 
@@ -188,6 +191,7 @@ int runRemesh(const std::vector<std::string>& args) {
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
   int verbose = 1;
   long long seed = 1;
+  mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -205,6 +209,7 @@ int runRemesh(const std::vector<std::string>& args) {
     else if (a == "-hgrad") hgrad = parseNumber(a, value());
     else if (a == "-v") verbose = int(parseNumber(a, value()));
     else if (a == "--seed") seed = (long long)parseNumber(a, value());
+    else if (a == "--lattice") lattice = mesher::parseLatticeOrientation(value());
     else if (!a.empty() && a[0] == '-') ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
       ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
@@ -226,6 +231,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.placement.plateauSteps = 10;
   options.placement.plateauGain = 0.01;
   options.placement.seed = std::uint64_t(seed);
+  options.placement.lattice.orientation = lattice;
   if (verbose >= 1) {
     const nlohmann::json resolved = {{"in", in}, {"sol", sol}, {"out", out}, {"outSol", outSol}, {"hmin", hmin},
                                      {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},

@@ -276,12 +276,29 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
   const Where w = colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
   requireObject(j, w);
   checkKeys(j, {"placement", "connect"}, w);
-  if (j.contains("placement")) applyBindings(j["placement"], options.placement, placementBindings(), w / "placement");
+  if (j.contains("placement")) {
+    // The numeric fields by binding; the lattice orientation is the one string-valued field.
+    json placement = j["placement"];
+    requireObject(placement, w / "placement");
+    if (placement.contains("latticeOrientation")) {
+      const Where wl = w / "placement" / "latticeOrientation";
+      const std::string name = getString(placement["latticeOrientation"], wl);
+      try {
+        options.placement.lattice.orientation = mesher::parseLatticeOrientation(name);
+      } catch (const InputError& e) {
+        ABLMG_REQUIRE(false, wl.str() << ": " << e.what());
+      }
+      placement.erase("latticeOrientation");
+    }
+    applyBindings(placement, options.placement, placementBindings(), w / "placement");
+  }
   if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
 }
 
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
-  return {{"placement", bindingsToJson(options.placement, placementBindings())},
+  json placement = bindingsToJson(options.placement, placementBindings());
+  placement["latticeOrientation"] = mesher::latticeOrientationName(options.placement.lattice.orientation);
+  return {{"placement", placement},
           {"connect", bindingsToJson(options.connect, connectBindings())}};
 }
 

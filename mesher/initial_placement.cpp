@@ -35,13 +35,26 @@ bool crossesHalfOpen(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b)
   return op * oq < 0;
 }
 
-/// M^{-1/2} (symmetric root): maps the unit disk onto the unit-metric ellipse.
-Eigen::Matrix2d inverseSqrt(const Metric2& m) {
+/// The lattice map L = M^{-1/2} Q(φ): the unit hexagonal lattice, rotated by φ in metric
+/// space, onto the unit-metric ellipse. With M = R(θ) diag(h1⁻², h2⁻²) R(θ)ᵀ,
+/// L = R(θ) diag(h1, h2) R(φ − θ); φ = 0 is the symmetric root (lattice rows along the images
+/// of the x axis), φ = θ puts a row along e1 (the long size), φ = θ + π/2 along e2. A hexagonal
+/// lattice repeats every 60°, so φ is blended on the 6φ circle from 0 (isotropic, where θ is
+/// noise) to the eigenframe (ratio h1/h2 ≥ alignRatio); θ's own period π is a multiple of 60°.
+Eigen::Matrix2d latticeMap(const Metric2& m, LatticeOrientation orientation, double alignRatio) {
   const MetricEigen e = m.eigen();
+  double phi = 0;
+  if (orientation != LatticeOrientation::Axes) {
+    const double target = e.theta + (orientation == LatticeOrientation::ShortAxis ? std::numbers::pi / 2 : 0.0);
+    const double w = std::clamp((e.h1 / e.h2 - 1) / std::max(alignRatio - 1, 1e-12), 0.0, 1.0);
+    phi = std::atan2(w * std::sin(6 * target), (1 - w) + w * std::cos(6 * target)) / 6;
+  }
   const double c = std::cos(e.theta), s = std::sin(e.theta);
-  Eigen::Matrix2d r;
+  const double cp = std::cos(phi - e.theta), sp = std::sin(phi - e.theta);
+  Eigen::Matrix2d r, q;
   r << c, -s, s, c;
-  return r * Eigen::Vector2d(e.h1, e.h2).asDiagonal() * r.transpose();
+  q << cp, -sp, sp, cp;
+  return r * Eigen::Vector2d(e.h1, e.h2).asDiagonal() * q;
 }
 
 } // namespace
@@ -249,6 +262,22 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
   }
 }
 
+LatticeOrientation parseLatticeOrientation(const std::string& name) {
+  if (name == "axes") return LatticeOrientation::Axes;
+  if (name == "long") return LatticeOrientation::LongAxis;
+  if (name == "short") return LatticeOrientation::ShortAxis;
+  ABLMG_REQUIRE(false, "lattice orientation: expected axes, short or long, got '" << name << "'");
+  return LatticeOrientation::Axes;
+}
+
+const char* latticeOrientationName(LatticeOrientation orientation) {
+  switch (orientation) {
+  case LatticeOrientation::LongAxis: return "long";
+  case LatticeOrientation::ShortAxis: return "short";
+  default: return "axes";
+  }
+}
+
 void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, double spacingHint,
                         const InteriorPlacementOptions& options, std::span<const Vec2> seeds) {
   const auto [lo, hi] = geo.boundingBox();
@@ -300,7 +329,7 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
       const int p = queue[head];
       const Vec2 x = nodes.positions[p];
       const Metric2 m = ms[p];
-      const Eigen::Matrix2d s = inverseSqrt(m);
+      const Eigen::Matrix2d s = latticeMap(m, options.orientation, options.alignRatio);
       for (const Vec2& d : dirs) {
         const Vec2 c = x + s * d;
         if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));

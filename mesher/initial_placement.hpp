@@ -18,12 +18,16 @@
 ///     affine image M^{-1/2}·(unit hexagonal lattice); for graded metrics the lattice bends
 ///     coherently (M^{-1/2} is the symmetric root, continuous in M), with seams only where
 ///     fronts meet. Unreached pockets are seeded again from a coarse probe grid.
+///     With an orientation other than Axes the six directions are first turned in metric
+///     space so that one row runs along the node's long or short eigenvector: the step is
+///     M_p^{-1/2} Q(φ_p) d (latticeMap in the .cpp), still exact for a constant metric.
 #include "core/bucket_grid.hpp"
 #include "core/domain.hpp"
 #include "core/metric_field.hpp"
 #include "mesher/node_set.hpp"
 
 #include <span>
+#include <string>
 #include <vector>
 
 namespace ablmg::mesher {
@@ -69,9 +73,24 @@ private:
 void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
                         std::vector<double>& arcLength);
 
+/// How the interior lattice is turned in metric space (see placeInteriorNodes).
+enum class LatticeOrientation {
+  Axes,       ///< p + M^{-1/2} d: rows along the images of the x axis (symmetric root)
+  LongAxis,   ///< one row along each node's long-size eigenvector e1
+  ShortAxis,  ///< one row along each node's short-size eigenvector e2
+};
+
+/// "axes" | "long" | "short" (InputError otherwise).
+LatticeOrientation parseLatticeOrientation(const std::string& name);
+const char* latticeOrientationName(LatticeOrientation orientation);
+
 struct InteriorPlacementOptions {
   double minNodeDistance = 0.75;  ///< metric; lattice candidates closer to a node are dropped
   double minWallDistance = 0.55;  ///< metric; ≈ √3/2 − spacing tolerance for a boundary row
+  LatticeOrientation orientation = LatticeOrientation::Axes;
+  /// LongAxis/ShortAxis: full alignment from this anisotropy ratio h1/h2 on, blended towards
+  /// Axes below it (the eigenframe of a near-isotropic metric is noise).
+  double alignRatio = 1.5;
 };
 
 /// Interior nodes of §3.1 (step 3), appended to `nodes` (which holds the boundary nodes).

@@ -150,7 +150,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
                                                            << " exceeds maxNodes = " << options.maxNodes);
   const double spacing = std::sqrt(domain.area() / std::max<double>(st.predictedNodes, 1.0));
   const int firstInterior = nodes.size();
-  placeInteriorNodes(geo, metric, nodes, spacing, {}, options.warmStart);
+  placeInteriorNodes(geo, metric, nodes, spacing, options.lattice, options.warmStart);
   zOrder(nodes, firstInterior);
   arc.resize(nodes.size(), -1.0);
   BubbleSystem sys(geo, std::move(nodes), std::move(arc));

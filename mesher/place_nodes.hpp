@@ -28,6 +28,7 @@
 /// number of threads (no floating reductions across threads; nothing random is drawn).
 #include "core/domain.hpp"
 #include "core/metric_field.hpp"
+#include "mesher/initial_placement.hpp"
 #include "mesher/node_set.hpp"
 
 #include <cstdint>
@@ -91,6 +92,8 @@ struct PlacementOptions {
   /// The relative target then refers to max(initial residual, 0.5), a fresh lattice's typical
   /// initial residual, not to the warm packing's own (already small) one.
   std::vector<Vec2> warmStart;
+  /// The initial interior lattice (initial_placement.hpp): spacing rules and orientation.
+  InteriorPlacementOptions lattice;
 };
 
 struct PlacementStats {

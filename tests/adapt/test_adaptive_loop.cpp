@@ -53,6 +53,25 @@ TEST(AdaptiveLoop, WaveFrontErrorsFallAtOptimalRates) {
 
 }
 
+// The loop's default lattice (one row along the short size, AdaptOptions::mesh) against the
+// axis-aligned one, same metric schedule: measured 8 % lower H1 and 22 % lower L2 error at 4k
+// vertices (p = 4). A mesher that lost the orientation would give equal errors.
+TEST(AdaptiveLoop, ShortAxisLatticeLowersTheWaveFrontErrors) {
+  const auto problem = fem::makeProblem("wavefront");
+  AdaptOptions o;
+  o.targetVertices = {1000, 2000, 4000};
+  o.metric.p = 4;
+  ASSERT_EQ(o.mesh.placement.lattice.orientation, mesher::LatticeOrientation::ShortAxis);
+  const AdaptReport shortAxis = runAdaptiveLoop(problem, o);
+  o.mesh.placement.lattice.orientation = mesher::LatticeOrientation::Axes;
+  const AdaptReport axes = runAdaptiveLoop(problem, o);
+  const auto &s = shortAxis.cycles.back(), &a = axes.cycles.back();
+  EXPECT_NEAR(double(s.vertices) / a.vertices, 1.0, 0.03);
+  EXPECT_LT(s.h1, 0.96 * a.h1);
+  EXPECT_LT(s.l2, 0.9 * a.l2);
+  EXPECT_GE(s.qMean, 0.9);
+}
+
 TEST(AdaptiveLoop, RejectsBadOptions) {
   const auto problem = fem::makeProblem("peak");
   AdaptOptions o;

@@ -59,7 +59,8 @@ foreach(case
     "bad_hessian|--problem wavefront --target-vertices 500 --hessian cubic|unknown Hessian recovery method 'cubic'"
     "unknown_flag|--problem wavefront --target-vertices 500 --frobnicate 1|unknown argument '--frobnicate'"
     "bad_norm|--problem wavefront --target-vertices 500 --norm h2|norm"
-    "bad_shape_blend|--problem wavefront --target-vertices 500 --shape-blend 2|shape")
+    "bad_shape_blend|--problem wavefront --target-vertices 500 --shape-blend 2|shape"
+    "bad_lattice|--problem wavefront --target-vertices 500 --lattice diagonal|lattice orientation: expected axes, short or long, got 'diagonal'")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)
   list(GET _parts 1 _args)

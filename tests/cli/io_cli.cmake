@@ -25,6 +25,8 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
                     remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
   ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+  ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
+                    remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
   # The .sol is read on a second thread; the errors still come in the sequential order:
   # the mesh's parse error, then the .sol's, then the mesh's validity.
   ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/truncated.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_both_bad.mesh)

@@ -9,6 +9,12 @@ endfunction()
 if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(tiny "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-6\"}}")
   ablmg_cli_failure(hostile_tiny_size "asks for about [0-9]+ nodes, more than maxNodes = 50000000" mesh ${_hdir}/tiny.json -o ${_hdir}/tiny.mesh)
+  ablmg_hostile_config(bad_lattice "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": \"diagonal\"}}}")
+  ablmg_cli_failure(config_bad_lattice "bad_lattice.json: options.placement.latticeOrientation: .*expected axes, short or long, got 'diagonal'"
+                    mesh ${_hdir}/bad_lattice.json -o ${_hdir}/bad_lattice.mesh)
+  ablmg_hostile_config(lattice_number "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": 2}}}")
+  ablmg_cli_failure(config_lattice_number "lattice_number.json: options.placement.latticeOrientation: expected string, got number"
+                    mesh ${_hdir}/lattice_number.json -o ${_hdir}/lattice_number.mesh)
   ablmg_cli_failure(hostile_max_nodes "more than maxNodes = 1000" mesh ${_hdir}/tiny.json --max-nodes 1000 -o ${_hdir}/tiny_max_nodes.mesh)
   ablmg_hostile_config(selfx "{\"domain\": {\"loops\": [[[0,0],[1,1],[1,0],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
   ablmg_cli_failure(hostile_self_intersecting "selfx.json: domain.loops: .*self-intersecting or touching boundary" mesh ${_hdir}/selfx.json -o ${_hdir}/selfx.mesh)

@@ -1,5 +1,7 @@
 #include "mesher/initial_placement.hpp"
 
+#include "core/error.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,6 +132,64 @@ TEST(InitialPlacement, ConstantMetricLatticeIsExactlyHexagonal) {
     }
     EXPECT_GT(far, 10);
   }
+}
+
+namespace {
+/// Angles (mod 60°) in metric space of the edges from the first interior node to its lattice
+/// neighbours (metric distance 1): the lattice rows' directions.
+std::vector<double> rowAnglesMod60(const Metric2& metric, LatticeOrientation orientation) {
+  const Domain d = Domain::rectangle(0, 0, 3, 2);
+  const DomainGeometry geo(d);
+  ConstantMetricField m(metric);
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, m, nodes, arc);
+  const int first = nodes.size();
+  InteriorPlacementOptions o;
+  o.orientation = orientation;
+  placeInteriorNodes(geo, m, nodes, 0.1, o);
+  const MetricEigen e = metric.eigen();
+  const double c = std::cos(e.theta), s = std::sin(e.theta);
+  std::vector<double> angles;
+  for (int j = first + 1; j < nodes.size(); ++j) {
+    const Vec2 v = nodes.positions[j] - nodes.positions[first];
+    if (std::abs(metric.length(v) - 1) > 1e-9) continue;
+    // metric-space image M^{1/2} v, in the eigenframe then back to x, y
+    const double a = (c * v.x() + s * v.y()) / e.h1, b = (-s * v.x() + c * v.y()) / e.h2;
+    const Vec2 w(c * a - s * b, s * a + c * b);
+    angles.push_back(std::fmod(std::atan2(w.y(), w.x()) + 4 * std::numbers::pi, std::numbers::pi / 3));
+  }
+  return angles;
+}
+double distMod60(double a, double b) {
+  const double p = std::numbers::pi / 3, d = std::fmod(std::abs(a - b), p);
+  return std::min(d, p - d);
+}
+} // namespace
+
+TEST(InitialPlacement, LatticeOrientationTurnsTheRowsInMetricSpace) {
+  const double theta = 0.3;
+  const Metric2 aniso = Metric2::fromSizes(0.2, 0.05, theta);  // e1 at θ, e2 at θ + π/2
+  const double longAxis = std::fmod(theta, std::numbers::pi / 3);
+  const double shortAxis = std::fmod(theta + std::numbers::pi / 2, std::numbers::pi / 3);
+  ASSERT_GT(distMod60(longAxis, 0), 0.2);   // the three choices give three different lattices
+  ASSERT_GT(distMod60(shortAxis, 0), 0.2);
+  ASSERT_GT(distMod60(shortAxis, longAxis), 0.2);
+  const std::pair<LatticeOrientation, double> cases[] = {
+      {LatticeOrientation::Axes, 0.0}, {LatticeOrientation::LongAxis, longAxis}, {LatticeOrientation::ShortAxis, shortAxis}};
+  for (const auto& [orientation, expected] : cases) {
+    const auto angles = rowAnglesMod60(aniso, orientation);
+    ASSERT_EQ(angles.size(), 6u) << latticeOrientationName(orientation);
+    for (double a : angles) EXPECT_LT(distMod60(a, expected), 1e-9) << latticeOrientationName(orientation);
+  }
+  // An isotropic metric has no eigenframe: every orientation falls back to the axes.
+  for (const auto orientation : {LatticeOrientation::LongAxis, LatticeOrientation::ShortAxis}) {
+    const auto angles = rowAnglesMod60(Metric2::isotropic(0.1), orientation);
+    ASSERT_EQ(angles.size(), 6u);
+    for (double a : angles) EXPECT_LT(distMod60(a, 0), 1e-9);
+  }
+  EXPECT_EQ(parseLatticeOrientation("short"), LatticeOrientation::ShortAxis);
+  EXPECT_THROW(parseLatticeOrientation("diagonal"), InputError);
 }
 
 TEST(InitialPlacement, PredictedCountEulerCorrection) {
