@@ -12,7 +12,7 @@ bash scripts/install_deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j"$(nproc)" --target ablmg
 out="${OUT_DIR:-out/wavefront}"
-build/bin/ablmg adapt --problem wavefront --target-vertices 1500,3000,6000,12000,12000 --p 4 --out-dir "$out"
+build/bin/ablmg adapt --problem wavefront --target-vertices 1500,3000,6000,12000,12000 --p 4 --shape-blend 0.25 --out-dir "$out"
 echo
 echo "Outputs of the flagship run, in $out/:"
 echo "  convergence.csv, convergence.json   errors (L2, H1), vertices, times per cycle, fitted rates"

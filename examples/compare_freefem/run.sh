@@ -2,17 +2,19 @@
 # FreeFem++'s classic adaptmesh loop and ablmg's adaptive loop side by side on Mitchell's wave
 # front, at matched vertex counts (issue 11). One command, from anywhere:
 #
-#   examples/compare_freefem/run.sh [--cycles K] [--alpha A] [--out DIR]
+#   examples/compare_freefem/run.sh [--cycles K] [--alpha A] [--shape-blend W] [--out DIR]
 #
 #   --cycles K  FreeFem++ cycles (default 12: up to 1.5·10⁴ vertices; 16: up to 1.2·10⁵)
 #   --alpha A   wave-front steepness (default 20)
+#   --shape-blend W  ablmg's metric shape (adapt/metric_from_hessian.hpp; default 0.25, the
+#               measured best for the H1 error on this problem; "none" = the L4 metric's own)
 #   --out DIR   output directory (default out/compare_freefem under the repository)
 #   ABLMG_BUILD=DIR  build directory (default build under the repository)
 #
 # Steps: 1. install freefem++ with apt-get if FreeFem++ is missing (needs root or sudo);
 # 2. configure + build ablmg and the compare_freefem_plot program if missing (cmake Release);
 # 3. FreeFem++ wavefront.edp → DIR/freefem.csv, DIR/freefem_final.mesh;
-# 4. ablmg adapt --p 4 with FreeFem's vertex count of each cycle as the target of the same cycle
+# 4. ablmg adapt --p 4 --shape-blend 0.25 with FreeFem's vertex count of each cycle as the target of the same cycle
 #    → DIR/ablmg/ (convergence.csv/.json, cycle_K.mesh);
 # 5. compare_freefem_plot → DIR/compare.png (L2 and H1 vs N, both final meshes) and
 #    DIR/compare.md (matched table, error ratios, per-cycle and whole-run times).
@@ -22,13 +24,15 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
 cycles=12
 alpha=20
+blend=0.25
 out="$repo/out/compare_freefem"
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --cycles) cycles=$2; shift 2 ;;
     --alpha) alpha=$2; shift 2 ;;
+    --shape-blend) blend=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    *) echo "run.sh: unknown argument '$1' (valid: --cycles K --alpha A --out DIR)" >&2; exit 2 ;;
+    *) echo "run.sh: unknown argument '$1' (valid: --cycles K --alpha A --shape-blend W --out DIR)" >&2; exit 2 ;;
   esac
 done
 build=${ABLMG_BUILD:-$repo/build}
@@ -69,7 +73,9 @@ targets=$(tail -n +2 "$out/freefem.csv" | cut -d, -f2 | paste -sd,)
 echo "== ablmg adapt: target vertices $targets"
 rm -rf "$out/ablmg"
 t2=$(now)
-"$build/bin/ablmg" adapt --problem wavefront --param alpha="$alpha" --p 4 --target-vertices "$targets" \
+blendArgs=()
+[[ "$blend" != none ]] && blendArgs=(--shape-blend "$blend")
+"$build/bin/ablmg" adapt --problem wavefront --param alpha="$alpha" --p 4 "${blendArgs[@]}" --target-vertices "$targets" \
   --uniform off --vtu off --medit on --out-dir "$out/ablmg" | tee "$out/ablmg.log"
 t3=$(now)
 
