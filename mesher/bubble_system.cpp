@@ -12,21 +12,36 @@
 namespace ablmg::mesher {
 namespace {
 
-/// Ids i in [0, n) with pred(i), ascending, collected in parallel (contiguous blocks per
-/// thread, concatenated in order: the result does not depend on the thread count).
-template <class Pred> void collectIf(int n, std::vector<int>& out, Pred&& pred) {
-  const int nt = omp_get_max_threads();
-  std::vector<std::vector<int>> part(static_cast<std::size_t>(nt));
+/// Ids i in [0, n) with pred(i), ascending, collected in parallel: contiguous blocks per
+/// thread, each copied to its offset in `out` (the result does not depend on the thread count).
+/// `visit(i)` runs first for every i (the caller's per-bubble work fused into the same pass).
+template <class Pred, class Visit>
+void collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& parts, Pred&& pred, Visit&& visit) {
+  parts.resize(std::size_t(omp_get_max_threads()));
+  std::vector<std::size_t> offset(parts.size() + 1, 0);
 #pragma omp parallel
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
-    auto& v = part[std::size_t(t)];
-    for (int i = lo; i < hi; ++i)
+    auto& v = parts[std::size_t(t)];
+    v.clear();
+    for (int i = lo; i < hi; ++i) {
+      visit(i, t);
       if (pred(i)) v.push_back(i);
+    }
+    offset[std::size_t(t) + 1] = v.size();
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t k = 1; k < offset.size(); ++k) offset[k] += offset[k - 1];
+      out.resize(offset.back());
+    }
+    std::copy(v.begin(), v.end(), out.begin() + std::ptrdiff_t(offset[std::size_t(t)]));
   }
-  out.clear();
-  for (const auto& v : part) out.insert(out.end(), v.begin(), v.end());
+}
+template <class Pred> void collectIf(int n, std::vector<int>& out, Pred&& pred) {
+  std::vector<std::vector<int>> parts;
+  collectIf(n, out, parts, pred, [](int, int) {});
 }
 
 } // namespace
@@ -153,19 +168,12 @@ Vec2 BubbleSystem::netForce(int i, const AdjacencyLists& adj, const DynamicsPara
 
 double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsParams& p) {
   const int n = nodes_.size();
-  // Invariant: force_ and res_ are zero outside list_, so only the last list is cleared
-  // (everything after a population edit): O(awake) instead of O(n) per step.
+  // force_ and res_ are written for the awake bubbles only and read only for them (advance(),
+  // updateActivity()), so asleep bubbles keep stale values: no clearing pass per step.
   if (resetForces_ || int(force_.size()) != n || int(res_.size()) != n) {
     force_.assign(std::size_t(n), Vec2::Zero());
     res_.assign(std::size_t(n), 0.0);
     resetForces_ = false;
-  } else {
-    const int m = int(list_.size());
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < m; ++k) {
-      force_[list_[k]] = Vec2::Zero();
-      res_[list_[k]] = 0.0;
-    }
   }
   active_.resize(std::size_t(n), 1);
   // The awake list: from updateActivity() when it is current, else from the flags.
@@ -189,24 +197,17 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
 
 void BubbleSystem::advance(const DynamicsParams& p) {
   const int n = nodes_.size();
+  maxTravelValid_ = false;
   const double dtm = p.dt / p.mass;
   active_.resize(std::size_t(n), 1);
-  // moved_ is set only for the bubbles advanced (list_ of the previous step), and by
-  // updateActivity for new ones (then resetMoved_ is set).
+  // moved_[i] == stamp_: bubble i moved in this step (a new stamp per step, so nothing is
+  // cleared); updateActivity() stamps new bubbles too.
+  ++stamp_;
   if (resetMoved_ || int(moved_.size()) != n) {
     moved_.assign(std::size_t(n), 0);
     resetMoved_ = false;
-  } else {
-    const int a = int(advanced_.size());
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < a; ++k) moved_[advanced_[k]] = 0;
   }
-  advanced_.resize(list_.size());
-  {
-    const int m = int(list_.size());
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < m; ++k) advanced_[k] = list_[k];
-  }
+  advanced_.resize(list_.size());  // filled in the loop below
   movedSinceRefresh_.resize(std::size_t(n), 1);
   disp_.resize(std::size_t(n), 0.0);
   clear_.resize(std::size_t(n), 0.0);
@@ -214,6 +215,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < m; ++k) {
     const int i = list_[k];
+    advanced_[k] = i;
     const Vec2 before = nodes_.positions[i];
     switch (nodes_.kinds[i]) {
       case NodeKind::Vertex: break;
@@ -262,7 +264,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     }
     const double d2 = metrics_[i].squaredLength(nodes_.positions[i] - before);
     if (d2 > moveEps2_) {
-      moved_[i] = 1;
+      moved_[i] = stamp_;
       movedSinceRefresh_[i] = 1;
       if (i < int(refPos_.size())) disp_[i] = std::sqrt(metrics_[i].squaredLength(nodes_.positions[i] - refPos_[i]));
     }
@@ -277,13 +279,13 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   // have moved and nobody was kicked.
   const bool full = resetActivity_ || int(moved_.size()) != n || int(kicked_.size()) != n;
   if (int(moved_.size()) != n) resetMoved_ = true;
-  moved_.resize(std::size_t(n), 1);
+  moved_.resize(std::size_t(n), stamp_);
   kicked_.resize(std::size_t(n), 0);
   // Candidates: bubbles awake now, and the neighbours of every bubble that moved (or was kicked).
   // Marked in parallel; concurrent stores of the same value go through atomic_ref.
   next_.assign(std::size_t(n), 0);
   auto mark = [&](int i) {
-    if (!(moved_[i] || kicked_[i])) return;
+    if (!(moved_[i] == stamp_ || kicked_[i])) return;
     std::atomic_ref<char>(next_[i]).store(1, std::memory_order_relaxed);
     for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
   };
@@ -295,23 +297,28 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < m; ++k) mark(advanced_[k]);
   }
-  long count = 0;
-#pragma omp parallel for schedule(static) reduction(+ : count)
-  for (int i = 0; i < n; ++i) {
+  // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
+  // instead of scanning the flags) and the largest travel since the last refresh.
+  constexpr std::size_t kPad = 8;  // one cache line per thread's maximum (no false sharing)
+  std::vector<double> travel(kPad * std::size_t(omp_get_max_threads()), 0.0);
+  const int nd = std::min(n, int(disp_.size()));
+  auto decide = [&](int i, int t) {
+    if (i < nd) travel[kPad * std::size_t(t)] = std::max(travel[kPad * std::size_t(t)], disp_[i]);
     if (nodes_.kinds[i] == NodeKind::Vertex) {
       next_[i] = 0;
-      continue;
+      return;
     }
     bool a = next_[i] != 0;
     if (!a && active_[i]) a = res_[i] > sleepBelow || std::sqrt(metrics_[i].squaredLength(vel_[i])) > sleepBelow;
     if (!a && active_[i]) vel_[i] = Vec2::Zero();  // asleep: force and velocity small, neighbours still
     next_[i] = char(a);
-    count += a;
-  }
+  };
+  collectIf(n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
+  maxTravel_ = *std::max_element(travel.begin(), travel.end());
+  maxTravelValid_ = true;
   active_.swap(next_);
-  // The next computeForces() takes this list instead of scanning the flags.
-  collectIf(n, nextList_.ids, [&](int i) { return active_[i] != 0; });
   nextList_.valid = true;
+  const long count = long(nextList_.ids.size());
   if (full) {
     kicked_.assign(std::size_t(n), 0);
     resetActivity_ = false;
@@ -320,6 +327,7 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
 }
 
 double BubbleSystem::maxTravelSinceRefresh() const {
+  if (maxTravelValid_) return maxTravel_;
   double m = 0;
   const int n = int(disp_.size());
 #pragma omp parallel for schedule(static) reduction(max : m)
@@ -329,12 +337,12 @@ double BubbleSystem::maxTravelSinceRefresh() const {
 
 std::vector<int> BubbleSystem::travellers(double threshold) const {
   std::vector<int> ids;
-  for (int i = 0; i < int(disp_.size()); ++i)
-    if (disp_[i] > threshold) ids.push_back(i);
+  collectIf(int(disp_.size()), ids, [&](int i) { return disp_[i] > threshold; });
   return ids;
 }
 
 void BubbleSystem::resetTravel(std::span<const int> ids) {
+  maxTravelValid_ = false;
   for (int i : ids) {
     disp_[i] = 0.0;
     if (i < int(refPos_.size())) refPos_[i] = nodes_.positions[i];
@@ -344,6 +352,8 @@ void BubbleSystem::resetTravel(std::span<const int> ids) {
 void BubbleSystem::clearMoved() {
   movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0);
   disp_.assign(std::size_t(nodes_.size()), 0.0);
+  maxTravel_ = 0;
+  maxTravelValid_ = true;
   refPos_ = nodes_.positions;
 }
 
@@ -354,6 +364,7 @@ void BubbleSystem::wakeAll() {
 
 void BubbleSystem::structureChanged() {
   resetForces_ = resetMoved_ = resetActivity_ = true;
+  maxTravelValid_ = false;
   nextList_.valid = false;
 }
 

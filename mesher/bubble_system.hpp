@@ -50,7 +50,7 @@ public:
   void updateMetrics(const MetricField& field, bool all = true, double lazyDistance = 0.05);
   /// Net forces (eq. 6) from the lists; returns the residual defined above.
   double computeForces(const AdjacencyLists& adj, const DynamicsParams& p);
-  /// |F_i|_{M_i} from the last computeForces() (0 for asleep bubbles).
+  /// |F_i|_{M_i} from the last computeForces() in which bubble i was awake.
   double forceResidual(int i) const { return res_[i]; }
   /// One Euler step using the forces of the last computeForces() (active bubbles only).
   void advance(const DynamicsParams& p);
@@ -73,6 +73,8 @@ public:
   void clearMoved();
   /// Largest metric distance of a bubble from where it was at clearMoved(): the two-ring
   /// refresh of the adjacency lists is exact while this stays below (radius − 1.5)/2.
+  /// O(1) right after updateActivity() (which takes it in its pass over the bubbles), O(n)
+  /// after anything else that moves or resets travel.
   double maxTravelSinceRefresh() const;
   /// Bubbles whose travel since the last clearMoved()/resetTravel() exceeds `threshold` (ascending).
   std::vector<int> travellers(double threshold) const;
@@ -96,8 +98,11 @@ private:
   Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
   void structureChanged();  ///< after population edits: the next step clears its per-node flags in full
   std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
-  std::vector<int> advanced_;  ///< list_ as of the last advance() (the only bubbles moved_ can flag)
+  std::vector<int> advanced_;  ///< list_ as of the last advance() (the only bubbles moved_ can stamp)
   std::vector<char> next_;     ///< updateActivity's scratch
+  std::vector<std::vector<int>> parts_;  ///< updateActivity's per-thread id lists
+  double maxTravel_ = 0;       ///< max of disp_ when maxTravelValid_
+  bool maxTravelValid_ = false;
   struct {
     std::vector<int> ids;  ///< awake bubbles after updateActivity (ascending), for the next computeForces
     bool valid = false;
@@ -110,7 +115,9 @@ private:
   std::vector<double> res_, disp_;
   std::vector<double> clear_;  ///< Interior nodes: lower bound of the Euclidean distance to the boundary (0 = unknown)
   std::vector<Vec2> refPos_;  ///< positions at the last clearMoved()
-  std::vector<char> active_, moved_, movedSinceRefresh_, kicked_;
+  std::vector<char> active_, movedSinceRefresh_, kicked_;
+  std::vector<int> moved_;  ///< step stamp of a bubble's last move (== stamp_: moved in this step)
+  int stamp_ = 1;
   double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
   std::vector<Metric2> metrics_;
   std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated
