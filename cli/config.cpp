@@ -20,6 +20,7 @@ namespace {
 
 using json = nlohmann::json;
 using mesher::ConnectOptions;
+using mesher::ImproveOptions;
 using mesher::PlacementOptions;
 
 std::string typeName(const json& j) {
@@ -107,6 +108,14 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
 const std::vector<Binding<ConnectOptions>>& connectBindings() {
   static const std::vector<Binding<ConnectOptions>> b = {{"threads", &ConnectOptions::threads},
                                                          {"localRepair", &ConnectOptions::localRepair}};
+  return b;
+}
+const std::vector<Binding<ImproveOptions>>& improveBindings() {
+  static const std::vector<Binding<ImproveOptions>> b = {{"enabled", &ImproveOptions::enabled},
+                                                         {"qThreshold", &ImproveOptions::qThreshold},
+                                                         {"maxPasses", &ImproveOptions::maxPasses},
+                                                         {"swapMargin", &ImproveOptions::swapMargin},
+                                                         {"moveMargin", &ImproveOptions::moveMargin}};
   return b;
 }
 
@@ -275,7 +284,7 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
   const std::size_t colon = where.find(": ");
   const Where w = colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
   requireObject(j, w);
-  checkKeys(j, {"placement", "connect"}, w);
+  checkKeys(j, {"placement", "connect", "improve"}, w);
   if (j.contains("placement")) {
     // The numeric fields by binding; the lattice orientation is the one string-valued field.
     json placement = j["placement"];
@@ -293,13 +302,15 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
     applyBindings(placement, options.placement, placementBindings(), w / "placement");
   }
   if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
+  if (j.contains("improve")) applyBindings(j["improve"], options.improve, improveBindings(), w / "improve");
 }
 
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
   json placement = bindingsToJson(options.placement, placementBindings());
   placement["latticeOrientation"] = mesher::latticeOrientationName(options.placement.lattice.orientation);
   return {{"placement", placement},
-          {"connect", bindingsToJson(options.connect, connectBindings())}};
+          {"connect", bindingsToJson(options.connect, connectBindings())},
+          {"improve", bindingsToJson(options.improve, improveBindings())}};
 }
 
 Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir) {

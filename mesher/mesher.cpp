@@ -27,14 +27,20 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   MeshResult result;
   result.stats.placement = placement.stats;
   result.stats.connect = connected.stats;
-  // Every mesh returned is valid: checked here unless connect() already checked this very mesh.
+  result.metric.reserve(connected.nodeOfVertex.size());
+  for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
+  // The quality post-pass (improve.hpp): moved vertices get the field's metric in result.metric.
+  if (options.improve.enabled)
+    result.stats.improve = improveQuality(connected.mesh, result.metric, metric, options.improve);
+  const bool improved = result.stats.improve.swaps + result.stats.improve.moves > 0;
+  // Every mesh returned is valid: checked here unless connect() already checked this very mesh
+  // and the post-pass left it as it was.
   const auto t0 = std::chrono::steady_clock::now();
-  if (!connected.validated) connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
+  if (!connected.validated || improved)
+    connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
   result.stats.secondsValidate =
       connected.secondsValidate + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   result.mesh = std::move(connected.mesh);
-  result.metric.reserve(connected.nodeOfVertex.size());
-  for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
   return result;
 }
 

@@ -2,8 +2,9 @@
 /// ablmg's mesher API — the one header a solver calls in a loop (the libmmg2d.h of ablmg).
 ///
 ///   Domain + MetricField ─ placeNodes (§3) ─▶ PlacementResult ─ connect (§4) ─▶ Mesh2
+///                                                        ─ improveQuality (improve.hpp) ─▶ Mesh2
 ///
-/// meshDomain() runs both stages, validates the mesh (Mesh2::validate against the domain's
+/// meshDomain() runs the stages, validates the mesh (Mesh2::validate against the domain's
 /// area) and returns it with statistics. It never returns an invalid mesh: it throws
 /// ablmg::Error if repair fails, ablmg::InputError for bad input (non-SPD metric, a metric
 /// asking for more than maxNodes nodes, ...). It does not print, open files or exit.
@@ -11,6 +12,7 @@
 #include "core/mesh2.hpp"
 #include "core/metric_field.hpp"
 #include "mesher/connect.hpp"
+#include "mesher/improve.hpp"
 #include "mesher/place_nodes.hpp"
 
 namespace ablmg::mesher {
@@ -18,11 +20,13 @@ namespace ablmg::mesher {
 struct MeshOptions {
   PlacementOptions placement;
   ConnectOptions connect;
+  ImproveOptions improve;  ///< the post-pass on triangles with q < improve.qThreshold (enabled: on)
 };
 
 struct MeshStats {
   PlacementStats placement;
   ConnectStats connect;
+  ImproveStats improve;  ///< all zero when the post-pass is disabled
   double secondsValidate = 0;
 };
 

@@ -1,0 +1,65 @@
+#pragma once
+/// A local quality post-pass on the worst triangles of a valid mesh (after the ABLMG
+/// connection, mesher.hpp): edge swaps and vertex relocation where the element quality
+///   q(T) = 4√3 |T|_M / Σ|e|²_M ∈ (0, 1],  M = the mean of T's three vertex metrics
+/// (quality.hpp's triangleQuality, the q that `ablmg stats` and the adaptive loop report)
+/// is below a threshold. The bulk of the mesh (q ≥ threshold) is not touched.
+///
+/// Each pass visits the triangles with q < qThreshold, worst first (ties: lower id); a triangle
+/// still bad when its turn comes gets the better of two edits (judged by the smallest q among
+/// the triangles the edit changes; a tie goes to the swap), if either is possible:
+///  (a) a swap: the flip of one of its interior edges (never a boundary edge; both triangles
+///      with the same triangleRef) whose quadrilateral is strictly convex (exact orient2d: both
+///      new triangles counter-clockwise) and which raises the smaller q of the two triangles by
+///      more than `swapMargin` (no cycling); the best of its three edges;
+///  (b) a move: one of its interior vertices (on no boundary edge) goes to the best of: points
+///      on the segments towards the mean of the ring's ideal apexes (the apex that makes a ring
+///      edge an equilateral triangle of the metric), towards the ring's centroid and towards
+///      the worst star triangle's ideal apex, refined by a compass search in the vertex's
+///      metric. "Best": the highest min(star's smallest q, qThreshold), then the most star
+///      edges within ±10 % of unit length, then the highest smallest q (so that where the
+///      metric varies fast, shape is not bought with edge lengths once the threshold is met).
+///      A point is admissible only if every star triangle stays strictly counter-clockwise
+///      (exact orient2d); its metric is `field.at(point)`; the move must raise the star's
+///      smallest q by more than `moveMargin`.
+/// Passes stop when one changes nothing, no triangle is bad, or after maxPasses. No edit lowers
+/// the smallest q of the triangles it changes, so the mesh's q min never decreases.
+///
+/// Invariants: the mesh stays valid (Mesh2::validate) and covers the same region; vertex count,
+/// boundary vertices, boundary edges (and their refs) and triangle count are unchanged; only
+/// triangles near bad ones change. The result is deterministic (single thread, fixed order):
+/// the same input gives a bit-identical output. Cost: O(N) to build the triangle adjacency
+/// (counting sort of half-edges, Mesh2::triangleNeighbours) and the qualities, then
+/// O(bad triangles × star size × field evaluations (≤ 137 per vertex tried)) per pass; with
+/// no bad triangle, one O(N) quality scan and nothing else.
+#include "core/mesh2.hpp"
+#include "core/metric2.hpp"
+#include "core/metric_field.hpp"
+
+#include <vector>
+
+namespace ablmg::mesher {
+
+struct ImproveOptions {
+  bool enabled = true;       ///< meshDomain runs the pass (improveQuality itself ignores it)
+  double qThreshold = 0.7;   ///< triangles with q below this are improved; in (0, 1]
+  int maxPasses = 8;         ///< cap on swap + relocation passes, ≥ 0
+  double swapMargin = 1e-3;  ///< a swap must raise min q of its two triangles by more (no cycling)
+  double moveMargin = 1e-4;  ///< a move must raise min q of its star by more
+};
+
+struct ImproveStats {
+  long badBefore = 0, badAfter = 0;     ///< triangles with q < qThreshold
+  long swaps = 0, moves = 0;            ///< edge flips and vertex relocations done
+  int passes = 0;                       ///< passes run (≤ maxPasses)
+  double qMinBefore = 0, qMinAfter = 0; ///< smallest q over the mesh (0 for an empty mesh)
+  double seconds = 0;
+};
+
+/// Improves `mesh` in place. `mesh` must be valid, `metrics` one per vertex (the prescribed
+/// metric there; InputError otherwise) and `field` the metric the mesh was built for: a moved
+/// vertex gets `field.at(new position)` in `metrics`. Options out of range: InputError.
+ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field,
+                            const ImproveOptions& options = {});
+
+} // namespace ablmg::mesher
