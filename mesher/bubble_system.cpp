@@ -14,21 +14,27 @@ namespace {
 
 /// Ids i in [0, n) with pred(i), ascending, collected in parallel: contiguous blocks per
 /// thread, each copied to its offset in `out` (the result does not depend on the thread count).
-/// `visit(i)` runs first for every i (the caller's per-bubble work fused into the same pass).
+/// `visit(i)` runs first for every i (the caller's per-bubble work fused into the same pass);
+/// returns the largest value visit returned (0 if none is larger).
 template <class Pred, class Visit>
-void collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& parts, Pred&& pred, Visit&& visit) {
+double collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& parts, Pred&& pred, Visit&& visit) {
+  constexpr std::size_t kPad = 8;  // one cache line per thread's maximum (no false sharing)
   parts.resize(std::size_t(omp_get_max_threads()));
   std::vector<std::size_t> offset(parts.size() + 1, 0);
+  std::vector<double> best(kPad * parts.size(), 0.0);
 #pragma omp parallel
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
     auto& v = parts[std::size_t(t)];
     v.clear();
+    double m = 0;
     for (int i = lo; i < hi; ++i) {
-      visit(i, t);
+      const double x = visit(i);
+      m = x > m ? x : m;
       if (pred(i)) v.push_back(i);
     }
+    best[kPad * std::size_t(t)] = m;
     offset[std::size_t(t) + 1] = v.size();
 #pragma omp barrier
 #pragma omp single
@@ -38,10 +44,11 @@ void collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& part
     }
     std::copy(v.begin(), v.end(), out.begin() + std::ptrdiff_t(offset[std::size_t(t)]));
   }
+  return *std::max_element(best.begin(), best.end());
 }
 template <class Pred> void collectIf(int n, std::vector<int>& out, Pred&& pred) {
   std::vector<std::vector<int>> parts;
-  collectIf(n, out, parts, pred, [](int, int) {});
+  collectIf(n, out, parts, pred, [](int) { return 0.0; });
 }
 
 } // namespace
@@ -299,22 +306,19 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   }
   // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
   // instead of scanning the flags) and the largest travel since the last refresh.
-  constexpr std::size_t kPad = 8;  // one cache line per thread's maximum (no false sharing)
-  std::vector<double> travel(kPad * std::size_t(omp_get_max_threads()), 0.0);
   const int nd = std::min(n, int(disp_.size()));
-  auto decide = [&](int i, int t) {
-    if (i < nd) travel[kPad * std::size_t(t)] = std::max(travel[kPad * std::size_t(t)], disp_[i]);
+  auto decide = [&](int i) {  // returns the bubble's travel
     if (nodes_.kinds[i] == NodeKind::Vertex) {
       next_[i] = 0;
-      return;
+    } else {
+      bool a = next_[i] != 0;
+      if (!a && active_[i]) a = res_[i] > sleepBelow || std::sqrt(metrics_[i].squaredLength(vel_[i])) > sleepBelow;
+      if (!a && active_[i]) vel_[i] = Vec2::Zero();  // asleep: force and velocity small, neighbours still
+      next_[i] = char(a);
     }
-    bool a = next_[i] != 0;
-    if (!a && active_[i]) a = res_[i] > sleepBelow || std::sqrt(metrics_[i].squaredLength(vel_[i])) > sleepBelow;
-    if (!a && active_[i]) vel_[i] = Vec2::Zero();  // asleep: force and velocity small, neighbours still
-    next_[i] = char(a);
+    return i < nd ? disp_[i] : 0.0;
   };
-  collectIf(n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
-  maxTravel_ = *std::max_element(travel.begin(), travel.end());
+  maxTravel_ = collectIf(n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
   maxTravelValid_ = true;
   active_.swap(next_);
   nextList_.valid = true;
