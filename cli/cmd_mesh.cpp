@@ -130,6 +130,10 @@ int runMesh(const std::vector<std::string>& args) {
                           {"repairedTriangles", c.repairedTriangles}, {"failedRecoveries", c.failedRecoveries},
                           {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"localRepair", c.localRepair}, {"droppedNodes", c.droppedNodes},
                           {"secondsLocalMeshes", c.secondsLocalMeshes}, {"secondsRepair", c.secondsRepair}}},
+             {"improve", {{"badBefore", r.stats.improve.badBefore}, {"badAfter", r.stats.improve.badAfter},
+                          {"swaps", r.stats.improve.swaps}, {"moves", r.stats.improve.moves}, {"passes", r.stats.improve.passes},
+                          {"qMinBefore", r.stats.improve.qMinBefore}, {"qMinAfter", r.stats.improve.qMinAfter},
+                          {"seconds", r.stats.improve.seconds}}},
              {"secondsValidate", r.stats.secondsValidate}};
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -41,7 +41,7 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
   -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, domain, background
-                   field, placement, connection, validation, write)
+                   field, placement, connection, quality post-pass, validation, write)
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
@@ -285,8 +285,10 @@ int runRemesh(const std::vector<std::string>& args) {
               << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
               << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
               << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
-              << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", validation "
-              << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
+              << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass "
+              << r.stats.improve.seconds << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
+              << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves), validation " << r.stats.secondsValidate
+              << ", write " << secondsWrite << "\n";
   }
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, " << r.mesh.numTriangles()

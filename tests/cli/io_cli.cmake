@@ -25,6 +25,10 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
                     remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
   ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+  add_test(NAME cli.remesh_reports_post_pass
+           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
+  set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
+                       PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves\\)")
   ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
                     remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
   # The .sol is read on a second thread; the errors still come in the sequential order:
