@@ -302,7 +302,14 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
     applyBindings(placement, options.placement, placementBindings(), w / "placement");
   }
   if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
-  if (j.contains("improve")) applyBindings(j["improve"], options.improve, improveBindings(), w / "improve");
+  if (j.contains("improve")) {
+    applyBindings(j["improve"], options.improve, improveBindings(), w / "improve");
+    try {
+      mesher::requireValid(options.improve);
+    } catch (const InputError& e) {
+      ABLMG_REQUIRE(false, (w / "improve").str() << ": " << e.what());
+    }
+  }
 }
 
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {

@@ -379,20 +379,21 @@ private:
   std::vector<int> starTriangles_;               ///< scratch
 };
 
-void requireValidOptions(const ImproveOptions& o) {
+double minOf(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::min_element(x.begin(), x.end()); }
+
+} // namespace
+
+void requireValid(const ImproveOptions& o) {
   ABLMG_REQUIRE(o.qThreshold > 0 && o.qThreshold <= 1, "improve options: qThreshold must be in (0, 1], got " << o.qThreshold);
   ABLMG_REQUIRE(o.maxPasses >= 0, "improve options: maxPasses must be >= 0, got " << o.maxPasses);
   ABLMG_REQUIRE(o.swapMargin >= 0 && std::isfinite(o.swapMargin), "improve options: swapMargin must be >= 0, got " << o.swapMargin);
   ABLMG_REQUIRE(o.moveMargin >= 0 && std::isfinite(o.moveMargin), "improve options: moveMargin must be >= 0, got " << o.moveMargin);
 }
 
-double minOf(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::min_element(x.begin(), x.end()); }
-
-} // namespace
 
 ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field, const ImproveOptions& options) {
   const auto t0 = Clock::now();
-  requireValidOptions(options);
+  requireValid(options);
   std::vector<double> quality = elementQualities(mesh, metrics);  // checks metrics.size()
   ImproveStats stats;
   std::vector<int> bad;

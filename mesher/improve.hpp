@@ -48,6 +48,9 @@ struct ImproveOptions {
   double moveMargin = 1e-4;  ///< a move must raise min q of its star by more
 };
 
+/// Throws InputError naming the first field out of range ("improve options: qThreshold ...").
+void requireValid(const ImproveOptions& options);
+
 struct ImproveStats {
   long badBefore = 0, badAfter = 0;     ///< triangles with q < qThreshold
   long swaps = 0, moves = 0;            ///< edge flips and vertex relocations done

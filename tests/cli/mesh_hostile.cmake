@@ -15,6 +15,9 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(lattice_number "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": 2}}}")
   ablmg_cli_failure(config_lattice_number "lattice_number.json: options.placement.latticeOrientation: expected string, got number"
                     mesh ${_hdir}/lattice_number.json -o ${_hdir}/lattice_number.mesh)
+  ablmg_hostile_config(bad_improve "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"improve\": {\"qThreshold\": 1.5}}}")
+  ablmg_cli_failure(config_bad_improve "bad_improve.json: options.improve: improve options: qThreshold must be in \\(0, 1\\], got 1.5"
+                    mesh ${_hdir}/bad_improve.json -o ${_hdir}/bad_improve.mesh)
   ablmg_cli_failure(hostile_max_nodes "more than maxNodes = 1000" mesh ${_hdir}/tiny.json --max-nodes 1000 -o ${_hdir}/tiny_max_nodes.mesh)
   ablmg_hostile_config(selfx "{\"domain\": {\"loops\": [[[0,0],[1,1],[1,0],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
   ablmg_cli_failure(hostile_self_intersecting "selfx.json: domain.loops: .*self-intersecting or touching boundary" mesh ${_hdir}/selfx.json -o ${_hdir}/selfx.mesh)
