@@ -60,6 +60,7 @@ foreach(case
     "unknown_flag|--problem wavefront --target-vertices 500 --frobnicate 1|unknown argument '--frobnicate'"
     "bad_norm|--problem wavefront --target-vertices 500 --norm h2|norm"
     "bad_shape_blend|--problem wavefront --target-vertices 500 --shape-blend 2|shape"
+    "bad_plateau_gain|--problem wavefront --target-vertices 500 --plateau-gain 1|--plateau-gain must be in \\[0, 1\\), got 1"
     "bad_lattice|--problem wavefront --target-vertices 500 --lattice diagonal|lattice orientation: expected axes, short or long, got 'diagonal'")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)
