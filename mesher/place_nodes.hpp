@@ -74,8 +74,9 @@ struct PlacementOptions {
   /// metrics keep editing a few per mille for hundreds of steps). The early-stopping knob for
   /// graded metrics, whose residual may never settle. Off by default (a converged packing,
   /// issue 3: the constant-metric disk would stop at ×65 instead of ×100). `ablmg remesh` uses
-  /// 10 steps and a gain of 1 point (README "Speed": time vs quality table). Not in the
-  /// adaptive loop: on the wave front it once saved no time and a cycle's q min fell to 0.26.
+  /// 10 steps and a gain of 1 point (README "Speed": time vs quality table), and so does the
+  /// adaptive loop since session 5 (adapt/adaptive_loop.hpp: a third less remesh time on the
+  /// wave front; the quality post-pass, improve.hpp, takes care of the worst triangles).
   int plateauSteps = 0;
   double plateauGain = 0.002;  ///< share gain (0.002 = 0.2 point) that counts as progress
   /// A bubble's metric is evaluated again once it has moved this far (metric units) from where
