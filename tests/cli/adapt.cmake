@@ -80,3 +80,10 @@ set_tests_properties(cli_adapt_success PROPERTIES LABELS cli)
 
 add_test(NAME cli_adapt_help COMMAND $<TARGET_FILE:ablmg> adapt --help)
 set_tests_properties(cli_adapt_help PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "usage: ablmg adapt --problem NAME")
+
+# Determinism of the whole loop (lattice, plateau stop, post-pass included): 1 and 2 threads give
+# byte-identical meshes and metrics in every cycle.
+add_test(NAME cli_adapt_deterministic_across_threads
+         COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DOUT=${_dir}/determinism
+                 -P ${CMAKE_CURRENT_LIST_DIR}/check_identical_adapt.cmake.in)
+set_tests_properties(cli_adapt_deterministic_across_threads PROPERTIES LABELS cli)
