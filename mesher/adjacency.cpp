@@ -1,4 +1,5 @@
 #include "mesher/adjacency.hpp"
+#include "mesher/parallel_threshold.hpp"
 
 #include "core/bucket_grid.hpp"
 
@@ -28,7 +29,7 @@ template <class RowFn> AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   a.offsets.assign(std::size_t(n) + 1, 0);
   std::vector<std::vector<int>> buf(static_cast<std::size_t>(omp_get_max_threads()));
   std::vector<int> blockLo(buf.size() + 1, n);
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
@@ -42,7 +43,7 @@ template <class RowFn> AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   }
   for (int i = 0; i < n; ++i) a.offsets[i + 1] += a.offsets[i];
   a.ids.resize(std::size_t(a.offsets[n]));
-#pragma omp parallel for schedule(static, 1)
+#pragma omp parallel for schedule(static, 1) if (n >= kMinParallelItems)
   for (int t = 0; t < int(buf.size()); ++t)
     if (!buf[t].empty()) std::copy(buf[t].begin(), buf[t].end(), a.ids.begin() + a.offsets[blockLo[t]]);
   return a;
@@ -120,7 +121,7 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   r.start.assign(std::size_t(nd), 0);
   r.thread.assign(std::size_t(nd), 0);
   const double r2 = radius * radius;
-#pragma omp parallel
+#pragma omp parallel if (nd >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
@@ -183,7 +184,7 @@ template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const i
   }
   if (fits) {
     if (lists.ends.empty()) lists.ends.assign(lists.offsets.begin() + 1, lists.offsets.end());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nd >= kMinParallelItems)
     for (int k = 0; k < nd; ++k) {
       const int i = rows[std::size_t(k)];
       const auto r = row(k);
@@ -203,7 +204,7 @@ template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const i
     a.offsets[i + 1] = a.ends[i] + kRowSlack;
   }
   a.ids.assign(std::size_t(a.offsets[n]), -1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) {
     const auto r = slot[std::size_t(i)] >= 0 ? row(slot[std::size_t(i)]) : lists.neighbours(i);
     std::copy(r.begin(), r.end(), a.ids.begin() + a.offsets[i]);
@@ -263,7 +264,7 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   const int nd = int(dirty.size());
   std::vector<std::vector<std::pair<int, int>>> gainOf(static_cast<std::size_t>(omp_get_max_threads())),
       loseOf(gainOf.size());
-#pragma omp parallel
+#pragma omp parallel if (nd >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
@@ -360,7 +361,7 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
     BucketGrid fresh(lo, hi, std::max(std::sqrt(area / nNew), tiny), 4L * nNew + 16);
     fresh.build(x.subspan(std::size_t(firstNew)));
     std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelItems)
     {
       auto& out = found[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static) nowait
@@ -399,7 +400,7 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
   {
     std::vector<int> extra(static_cast<std::size_t>(n) + 1, 0);
     for (const auto& pr : pairs) ++extra[std::size_t(pr.first)];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
     for (int i = 0; i < n; ++i) {
       int c = extra[std::size_t(i)];
       const int o = rowOfOld[std::size_t(i)];
@@ -413,7 +414,7 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
   std::vector<int> pairStart(static_cast<std::size_t>(n) + 1, 0);
   for (const auto& pr : pairs) ++pairStart[std::size_t(pr.first) + 1];
   for (int i = 0; i < n; ++i) pairStart[i + 1] += pairStart[i];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) {
     int w = a.offsets[i];
     const int o = rowOfOld[std::size_t(i)];

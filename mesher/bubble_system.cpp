@@ -1,4 +1,5 @@
 #include "mesher/bubble_system.hpp"
+#include "mesher/parallel_threshold.hpp"
 
 #include "mesher/bubble_force.hpp"
 
@@ -22,7 +23,7 @@ double collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& pa
   parts.resize(std::size_t(omp_get_max_threads()));
   std::vector<std::size_t> offset(parts.size() + 1, 0);
   std::vector<double> best(kPad * parts.size(), 0.0);
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
@@ -192,7 +193,7 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
   nextList_.valid = false;
   const int m = int(list_.size());
   double residual = 0;
-#pragma omp parallel for schedule(static) reduction(max : residual)
+#pragma omp parallel for schedule(static) reduction(max : residual) if (m >= kMinParallelItems)
   for (int k = 0; k < m; ++k) {
     const int i = list_[k];
     force_[i] = netForce(i, adj, p);
@@ -219,7 +220,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
   disp_.resize(std::size_t(n), 0.0);
   clear_.resize(std::size_t(n), 0.0);
   const int m = int(list_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
   for (int k = 0; k < m; ++k) {
     const int i = list_[k];
     advanced_[k] = i;
@@ -297,11 +298,11 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
     for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
   };
   if (full) {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
     for (int i = 0; i < n; ++i) mark(i);
   } else {
     const int m = int(advanced_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
     for (int k = 0; k < m; ++k) mark(advanced_[k]);
   }
   // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
@@ -334,7 +335,7 @@ double BubbleSystem::maxTravelSinceRefresh() const {
   if (maxTravelValid_) return maxTravel_;
   double m = 0;
   const int n = int(disp_.size());
-#pragma omp parallel for schedule(static) reduction(max : m)
+#pragma omp parallel for schedule(static) reduction(max : m) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) m = std::max(m, disp_[i]);
   return m;
 }

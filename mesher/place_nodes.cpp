@@ -1,4 +1,5 @@
 #include "mesher/place_nodes.hpp"
+#include "mesher/parallel_threshold.hpp"
 
 #include "core/error.hpp"
 #include "mesher/adjacency.hpp"
@@ -100,7 +101,7 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
   const auto& m = sys.metrics();
   const int n = sys.size();
   long near = 0, unit = 0;
-#pragma omp parallel for schedule(static) reduction(+ : near, unit)
+#pragma omp parallel for schedule(static) reduction(+ : near, unit) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i)
     for (int j : adj.neighbours(i)) {
       if (j <= i) continue;

@@ -1,4 +1,5 @@
 #include "mesher/population.hpp"
+#include "mesher/parallel_threshold.hpp"
 
 #include "core/bucket_grid.hpp"
 
@@ -13,7 +14,7 @@ namespace ablmg::mesher {
 std::vector<double> overlapRatios(std::span<const Vec2> x, std::span<const Metric2> m, const AdjacencyLists& adj) {
   const int n = adj.size();
   std::vector<double> alpha(std::size_t(n), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) {
     double s = 0;
     for (int j : adj.neighbours(i)) {
@@ -39,7 +40,7 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   const std::vector<double> alpha = overlapRatios(nodes.positions, ms, adj);
 
   std::vector<double> nearest(std::size_t(n), std::numeric_limits<double>::infinity());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i)
     for (int j : adj.neighbours(i)) {
       const Vec2 d = nodes.positions[j] - nodes.positions[i];
@@ -101,7 +102,7 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   const int nIns = int(ins.size());
   std::vector<Vec2> candPos(std::size_t(nIns) * kCand);
   std::vector<double> candGap(std::size_t(nIns) * kCand, -1.0);  // −1: outside or too close to the boundary
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) if (nIns >= kMinParallelItems)
   for (int q = 0; q < nIns; ++q) {
     const int i = ins[std::size_t(q)];
     if (locked[i]) continue;
