@@ -215,7 +215,6 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     moved_.assign(std::size_t(n), 0);
     resetMoved_ = false;
   }
-  advanced_.resize(list_.size());  // filled in the loop below
   movedSinceRefresh_.resize(std::size_t(n), 1);
   disp_.resize(std::size_t(n), 0.0);
   clear_.resize(std::size_t(n), 0.0);
@@ -223,7 +222,6 @@ void BubbleSystem::advance(const DynamicsParams& p) {
 #pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
   for (int k = 0; k < m; ++k) {
     const int i = list_[k];
-    advanced_[k] = i;
     const Vec2 before = nodes_.positions[i];
     switch (nodes_.kinds[i]) {
       case NodeKind::Vertex: break;
@@ -283,8 +281,8 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   const int n = nodes_.size();
   const double eps = 0.3 * sleepBelow * dt;  // a move this small (metric) wakes nobody
   moveEps2_ = eps * eps;
-  // Since the last population edit (full pass), only the bubbles advanced in this step can
-  // have moved and nobody was kicked.
+  // Since the last population edit (full pass), only the bubbles advanced in this step (list_,
+  // unchanged since advance()) can have moved and nobody was kicked.
   const bool full = resetActivity_ || int(moved_.size()) != n || int(kicked_.size()) != n;
   if (int(moved_.size()) != n) resetMoved_ = true;
   moved_.resize(std::size_t(n), stamp_);
@@ -301,9 +299,9 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
     for (int i = 0; i < n; ++i) mark(i);
   } else {
-    const int m = int(advanced_.size());
+    const int m = int(list_.size());
 #pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
-    for (int k = 0; k < m; ++k) mark(advanced_[k]);
+    for (int k = 0; k < m; ++k) mark(list_[k]);
   }
   // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
   // instead of scanning the flags) and the largest travel since the last refresh.

@@ -98,7 +98,6 @@ private:
   Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
   void structureChanged();  ///< after population edits: the next step clears its per-node flags in full
   std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
-  std::vector<int> advanced_;  ///< list_ as of the last advance() (the only bubbles moved_ can stamp)
   std::vector<char> next_;     ///< updateActivity's scratch
   std::vector<std::vector<int>> parts_;  ///< updateActivity's per-thread id lists
   double maxTravel_ = 0;       ///< max of disp_ when maxTravelValid_
