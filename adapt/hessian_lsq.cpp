@@ -7,6 +7,13 @@
 #include <cmath>
 
 namespace ablmg::adapt {
+namespace {
+/// Below this many vertices the patch fits run on the calling thread: waking an OpenMP team
+/// costs more than ~2000 small least-squares fits (and far more under OMP_WAIT_POLICY=passive).
+/// Each vertex's fit is independent, so the result is the same for any team size.
+constexpr int kMinParallelVertices = 2048;
+} // namespace
+
 namespace detail {
 
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where) {
@@ -111,7 +118,7 @@ std::vector<Vec2> recoverGradients(const Mesh2& mesh, std::span<const double> u)
   const auto g = detail::vertexGraph(mesh);
   const int n = mesh.numVertices();
   std::vector<Vec2> out(n);
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelVertices)
   {
     std::vector<int> patch, mark(n, 0);
 #pragma omp for schedule(dynamic, 256)
@@ -128,7 +135,7 @@ std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) 
   const auto g = detail::vertexGraph(mesh);
   const int n = mesh.numVertices();
   std::vector<Hessian2> out(n);
-#pragma omp parallel
+#pragma omp parallel if (n >= kMinParallelVertices)
   {
     std::vector<int> patch, mark(n, 0);
 #pragma omp for schedule(dynamic, 256)

@@ -33,7 +33,10 @@ Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, 
   ABLMG_REQUIRE(perturbation >= 0 && perturbation <= 0.2,
                 "structuredMesh: perturbation = " << perturbation << " outside [0, 0.2]");
   ABLMG_REQUIRE(!domain.loops().empty(), "structuredMesh: empty domain");
-  const auto [lo, hi] = domain.boundingBox();
+  // Named copies, not a structured binding: the vertex lambda below captures them, which
+  // C++20 allows but clang 14 rejects.
+  const auto box = domain.boundingBox();
+  const Vec2 lo = box.first, hi = box.second;
   const double hx = (hi.x() - lo.x()) / nx, hy = (hi.y() - lo.y()) / ny;
   const double tol = 1e-9 * std::max(hx, hy);
   for (std::size_t l = 0; l < domain.loops().size(); ++l) {

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/predicates.hpp"
+#include "mesher/parallel_threshold.hpp"
 #include "mesher/triangulation.hpp"
 
 #include <omp.h>
@@ -495,7 +496,9 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n,
                 "connect: placement has inconsistent sizes");
   ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  // Small node sets run on the calling thread (parallel_threshold.hpp); same result either way.
+  const int threads =
+      n < kMinParallelItems ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
   ConnectResult result;
   ConnectStats& st = result.stats;
 
