@@ -32,6 +32,30 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
   -h, --help       this text
 )";
 
+/// Fixed corners closer than the metric asks crowd the boundary (every point of a loop that is
+/// not `smooth` is a mesh vertex): a circle given as a 96-gon of side 0.02 under h = 0.1 came
+/// out with q min 0.27 and 37 repaired triangles, against 0.80 and none with "smooth": true.
+/// Prints one note per such loop (segments of metric length < 0.5 at their midpoint).
+void noteCrowdedCorners(const Domain& domain, const MetricField& field) {
+  for (std::size_t l = 0; l < domain.loops().size(); ++l) {
+    const auto& loop = domain.loops()[l];
+    if (loop.smooth) continue;
+    int shortSegments = 0;
+    try {
+      for (std::size_t k = 0; k < loop.points.size(); ++k) {
+        const Vec2 &p = loop.points[k], &q = loop.points[(k + 1) % loop.points.size()];
+        if (field.at(0.5 * (p + q)).length(q - p) < 0.5) ++shortSegments;
+      }
+    } catch (const std::exception&) {
+      return;  // a bad metric is reported by the mesher itself, with its location
+    }
+    if (shortSegments > 0)
+      std::cerr << "ablmg mesh: note: loop " << l << " has " << shortSegments << " of " << loop.points.size()
+                << " segments shorter than half the metric size; all its points are fixed vertices. If the loop"
+                   " samples a curve, set \"smooth\": true in the domain (docs/config.md)\n";
+  }
+}
+
 nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
   return {{"predictedNodes", s.predictedNodes}, {"initialNodes", s.initialNodes}, {"finalNodes", s.finalNodes},
           {"inserted", s.inserted},             {"deleted", s.deleted},           {"steps", s.steps},
@@ -109,6 +133,7 @@ int runMesh(const std::vector<std::string>& args) {
   std::cout << "ablmg mesh: options " << resolved.dump() << "\n";
 
   // 3. Mesh (or place the bubbles).
+  noteCrowdedCorners(cfg.domain, *cfg.metric);
   const auto t0 = std::chrono::steady_clock::now();
   Mesh2 mesh;
   std::vector<Metric2> metric;

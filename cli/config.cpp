@@ -202,7 +202,7 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
     return io::readPoly(resolve(getString(j["poly"], w / "poly"), baseDir));
   }
   if (j.contains("loops")) {
-    checkKeys(j, {"loops", "tags"}, w);
+    checkKeys(j, {"loops", "tags", "smooth"}, w);
     const Where wl = w / "loops";
     const json& L = j["loops"];
     requireType(L, L.is_array() && !L.empty(), "non-empty array of loops", wl);
@@ -226,6 +226,19 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
             requireType(T[l][k], T[l][k].is_number_integer(), "integer", wt[l][k]);
             loops[l].tags.push_back(T[l][k].get<int>());
           }
+        }
+      }
+    }
+    if (j.contains("smooth")) {  // true/false for every loop, or one boolean per loop
+      const Where ws = w / "smooth";
+      const json& S = j["smooth"];
+      if (S.is_boolean()) {
+        for (auto& loop : loops) loop.smooth = S.get<bool>();
+      } else {
+        requireType(S, S.is_array() && S.size() == L.size(), "boolean or one boolean per loop", ws);
+        for (std::size_t l = 0; l < S.size(); ++l) {
+          requireType(S[l], S[l].is_boolean(), "boolean", ws[l]);
+          loops[l].smooth = S[l].get<bool>();
         }
       }
     }

@@ -33,6 +33,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_cli_failure(hostile_inf_coordinate "infcoord.json" mesh ${_hdir}/infcoord.json -o ${_hdir}/infcoord.mesh)
   file(WRITE ${_hdir}/empty.json "")
   ablmg_cli_failure(hostile_empty_config "empty.json" mesh ${_hdir}/empty.json -o ${_hdir}/empty.mesh)
+  # Corners closer than the metric size: a valid mesh and a note pointing to "smooth".
+  ablmg_hostile_config(crowded "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,1],[0,1]], [[0.5,0.5],[0.52,0.5],[0.52,0.52],[0.5,0.52]]]}, \"metric\": {\"h\": \"0.1\"}}")
+  add_test(NAME cli.mesh_crowded_corners_note COMMAND ablmg mesh ${_hdir}/crowded.json -o ${_hdir}/crowded.mesh)
+  set_tests_properties(cli.mesh_crowded_corners_note PROPERTIES LABELS cli
+                       PASS_REGULAR_EXPRESSION "note: loop 1 has 4 of 4 segments shorter than half the metric size.*\"smooth\": true")
   # Valid meshes: a size a million times the domain (2 triangles), anisotropy 1e5.
   ablmg_hostile_config(huge "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e6\"}}")
   add_test(NAME cli.hostile_huge_size COMMAND ablmg mesh ${_hdir}/huge.json -o ${_hdir}/huge.mesh)

@@ -50,6 +50,25 @@ TEST(Config, DiskLoopsPolyAndBackgroundMetric) {
   EXPECT_NEAR(poly.metric->at(Vec2(1, 1)).m11(), 400, 1e-9);  // vertex 3 of square.mesh
 }
 
+TEST(Config, SmoothLoops) {
+  const char* loops = R"("loops": [[[0,0],[4,0],[4,4],[0,4]], [[1,1],[1,2],[2,2],[2,1]]])";
+  const auto parse = [&](const std::string& smooth) {
+    return cli::parseConfig(std::string(R"({"domain": {)") + loops + smooth + R"(}, "metric": {"h": "0.2"}})", "c", "");
+  };
+  const auto plain = parse(""), all = parse(R"(, "smooth": true)");
+  for (const auto& l : plain.domain.loops()) EXPECT_FALSE(l.smooth);
+  for (const auto& l : all.domain.loops()) EXPECT_TRUE(l.smooth);
+  const auto mixed = parse(R"(, "smooth": [false, true])");
+  EXPECT_FALSE(mixed.domain.loops()[0].smooth);
+  EXPECT_TRUE(mixed.domain.loops()[1].smooth);
+  EXPECT_NE(errorOf(std::string(R"({"domain": {)") + loops + R"(, "smooth": [true]}, "metric": {"h": "0.2"}})")
+                .find("config.json: domain.smooth: expected boolean or one boolean per loop"),
+            std::string::npos);
+  EXPECT_NE(errorOf(std::string(R"({"domain": {)") + loops + R"(, "smooth": [1, 0]}, "metric": {"h": "0.2"}})")
+                .find("config.json: domain.smooth[0]: expected boolean"),
+            std::string::npos);
+}
+
 TEST(Config, ErrorsNameTheKeyPath) {
   EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": 0.1}})"), "config.json: metric.h1: expected string, got number");
   EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "colour": 1})").find("config.json: colour: unknown key"),

@@ -3,6 +3,7 @@
 // (§4.3) with the edge-length and quality figures; thread-count independence.
 #include "mesher/connect.hpp"
 #include "mesher/mesher.hpp"
+#include "mesher/quality.hpp"
 
 #include "core/error.hpp"
 #include "core/metric_field.hpp"
@@ -194,6 +195,37 @@ TEST(Connect, HoleCloseToTheOuterLoopAndAThinNeck) {
   const MeshResult r2 = meshDomain(dn, ConstantMetricField(Metric2::isotropic(0.08)));
   const auto v = r2.mesh.validate(dn.area());
   EXPECT_TRUE(v.ok) << v.firstProblem;
+}
+
+TEST(Connect, SmoothLoopFreesTheBoundaryOfCrowdedCorners) {
+  // A circular hole given as a 96-gon of side 0.02 under h = 0.1: as a plain polygon every
+  // point is a fixed vertex (five per metric size), as a smooth loop the mesher spaces its own
+  // boundary nodes; both are valid, the smooth one has far better elements and fewer nodes there.
+  BoundaryLoop outer{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {}, false};
+  BoundaryLoop circle;
+  for (int k = 0; k < 96; ++k)
+    circle.points.emplace_back(0.3 * std::cos(2 * std::numbers::pi * k / 96), 0.3 * std::sin(2 * std::numbers::pi * k / 96));
+  const ConstantMetricField h(Metric2::isotropic(0.1));
+  double qMin[2];
+  int holeEdges[2];
+  for (const bool smooth : {false, true}) {
+    circle.smooth = smooth;
+    const Domain d(outer, {circle});
+    const MeshResult r = meshDomain(d, h);
+    // A smooth loop's mesh boundary is the polygon through its boundary nodes (chords).
+    double boundaryArea = 0;
+    for (const auto& e : r.mesh.boundaryEdges) boundaryArea += 0.5 * cross(r.mesh.vertices[e.a], r.mesh.vertices[e.b]);
+    const auto v = r.mesh.validate(smooth ? boundaryArea : d.area());
+    EXPECT_TRUE(v.ok) << v.firstProblem;
+    EXPECT_NEAR(boundaryArea, d.area(), smooth ? 0.01 * d.area() : 1e-9 * d.area());
+    qMin[smooth] = meshQuality(r.mesh, r.metric).elements.min;
+    holeEdges[smooth] = 0;
+    for (const auto& e : r.mesh.boundaryEdges) holeEdges[smooth] += r.mesh.vertices[e.a].norm() < 0.5;
+  }
+  EXPECT_EQ(holeEdges[false], 96);
+  EXPECT_NEAR(holeEdges[true], 2 * std::numbers::pi * 0.3 / 0.1, 1.5);  // ≈ 19 edges of metric length 1
+  EXPECT_GT(qMin[true], 0.7);
+  EXPECT_GT(qMin[true], qMin[false] + 0.2);
 }
 
 TEST(Connect, SameMeshForOneAndTwoThreads) {
