@@ -40,13 +40,40 @@ mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<M
   return mesher::meshDomain(domain, field, options);
 }
 
+AdaptProblem adaptProblem(const fem::TestProblem& problem) {
+  return {problem.domain, problem.poisson(), problem.exact()};
+}
+
 AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle) {
+  return runAdaptiveLoop(adaptProblem(problem), options, onCycle);
+}
+
+namespace {
+void requireMeshIndependent(const AdaptProblem& p) {
+  const auto check = [](const fem::ScalarData& d, const std::string& what) {
+    ABLMG_REQUIRE(!d.isVertexValues(), "adaptive loop: " << what << " is given per vertex; the loop needs a function or "
+                                                            "a constant (the mesh changes every cycle)");
+  };
+  check(p.pde.kappa, "kappa");
+  check(p.pde.f, "f");
+  check(p.pde.dirichletDefault, "the default Dirichlet data");
+  for (const auto& [tag, d] : p.pde.dirichlet) check(d, "the Dirichlet data of tag " + std::to_string(tag));
+  for (const auto& [tag, d] : p.pde.neumann) check(d, "the Neumann data of tag " + std::to_string(tag));
+  ABLMG_REQUIRE(!p.exact || p.exact->u, "adaptive loop: the exact solution has no u");
+}
+} // namespace
+
+AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
+                            const std::function<void(const CycleData&)>& onCycle) {
   validate(options);
+  requireMeshIndependent(problem);
+  ABLMG_REQUIRE(problem.exact || (options.stopL2 <= 0 && options.stopH1 <= 0),
+                "adapt options: stopL2/stopH1 need the exact solution, and this problem has none");
   const int cycles = options.cycles > 0 ? options.cycles : int(options.targetVertices.size());
   auto target = [&](int k) { return options.targetVertices[std::min<std::size_t>(k, options.targetVertices.size() - 1)]; };
-  const fem::PoissonProblem poisson = problem.poisson();
-  const fem::ExactSolution exact = problem.exact();
+  const fem::PoissonProblem& poisson = problem.pde;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   AdaptReport report;
   auto t0 = Clock::now();
@@ -67,7 +94,8 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
     t0 = Clock::now();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = since(t0);
-    const fem::ErrorReport err = fem::computeErrors(current.mesh, sol.u, exact, options.errorDegree);
+    const fem::ErrorReport err = problem.exact ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
+                                               : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
     row.l2 = err.l2;
     row.h1 = err.h1;
     row.l2Interp = err.l2Interp;
@@ -110,7 +138,7 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
   }
   bool distinct = false;
   for (int i = n - report.rateWindow + 1; i < n; ++i) distinct = distinct || nv[i] != nv[n - report.rateWindow];
-  if (n >= 2 && distinct) {
+  if (n >= 2 && distinct && problem.exact) {
     report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
     report.h1Rate = logLogSlope(nv, h1, report.rateWindow);
     report.l2InterpRate = logLogSlope(nv, li, report.rateWindow);

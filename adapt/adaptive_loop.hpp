@@ -32,6 +32,7 @@
 #include "fem/test_problems.hpp"
 #include "mesher/mesher.hpp"
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace ablmg::adapt {
@@ -107,11 +108,30 @@ struct CycleData {
   const Mesh2& mesh;
   const std::vector<Metric2>& meshMetric;   ///< the metric mesh_k was built for, per vertex
   const Eigen::VectorXd& u;                 ///< u_h per vertex
-  const fem::ErrorReport& errors;           ///< with per-element L2/H1 errors
+  const fem::ErrorReport& errors;           ///< with per-element L2/H1 errors (NaN and empty
+                                            ///< vectors when the problem has no exact solution)
   const std::vector<Metric2>& nextMetric;   ///< M_k per vertex of mesh_k (empty in the last cycle,
                                             ///< including one ended by a stop criterion)
 };
 
+/// What the loop solves: −∇·(κ∇u) = f on `domain` with the boundary data of `pde` (by tag:
+/// the tags of the domain's loops are the tags of every mesh's boundary edges), and, when
+/// known, the exact solution. Without it the error columns of the report are NaN, the rates
+/// are NaN, errorsDecrease is false and stopL2/stopH1 are rejected; meshes, metrics and u_h
+/// are produced as usual. Data must be functions or constants (not per-vertex values: the mesh
+/// changes every cycle).
+struct AdaptProblem {
+  Domain domain;
+  fem::PoissonProblem pde;
+  std::optional<fem::ExactSolution> exact;
+};
+
+/// A library problem as an AdaptProblem: κ = 1, u as Dirichlet data on the whole boundary, exact u.
+AdaptProblem adaptProblem(const fem::TestProblem& problem);
+
+AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
+                            const std::function<void(const CycleData&)>& onCycle = {});
+/// runAdaptiveLoop(adaptProblem(problem), options, onCycle).
 AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle = {});
 

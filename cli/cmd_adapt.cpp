@@ -1,6 +1,7 @@
-// ablmg adapt: the adaptive solve loop (issue 11) on a library problem, with reports.
+// ablmg adapt: the adaptive solve loop (issue 11) on a library problem or on a problem of the
+// user's own (CONFIG.json: domain, κ, f, boundary data, optionally the exact solution), with reports.
 //
-//   ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
+//   ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
@@ -23,6 +24,8 @@
 #include "adapt/adaptive_loop.hpp"
 #include "adapt/convergence.hpp"
 #include "cli/command.hpp"
+#include "cli/config.hpp"
+#include "cli/problem_config.hpp"
 #include "core/error.hpp"
 #include "fem/structured_mesh.hpp"
 #include "io/atomic_file.hpp"
@@ -65,7 +68,8 @@ bool parseOnOff(const std::string& text, const std::string& where) {
 }
 
 struct Args {
-  std::string problem;
+  std::string config;  ///< CONFIG.json (a problem of the user's own), or
+  std::string problem; ///< --problem NAME
   std::map<std::string, double> params;
   adapt::AdaptOptions options;
   std::string outDir = "adapt_out";
@@ -137,13 +141,17 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.medit = parseOnOff(value(), "adapt: --medit");
     } else if (key == "--out-dir") {
       a.outDir = value();
+    } else if (!key.empty() && key[0] != '-') {
+      ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
+      a.config = key;
     } else {
       ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
                                                        << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
                                                           "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice --plateau-gain --uniform --vtu --medit --out-dir)");
     }
   }
-  ABLMG_REQUIRE(!a.problem.empty(), "adapt: --problem NAME is required");
+  ABLMG_REQUIRE(a.problem.empty() != a.config.empty(), "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
+  ABLMG_REQUIRE(a.config.empty() || a.params.empty(), "adapt: --param is for --problem NAME; a config gives \"params\"");
   ABLMG_REQUIRE(haveTargets, "adapt: --target-vertices N1,N2,... is required");
   adapt::validate(a.options);
   return a;
@@ -159,7 +167,7 @@ std::string fmt(const char* f, double x) {
 struct UniformPoint {
   double vertices, l2, h1;
 };
-UniformPoint uniformRun(const fem::TestProblem& p, double n) {
+UniformPoint uniformRun(const adapt::AdaptProblem& p, double n) {
   const auto [lo, hi] = p.domain.boundingBox();
   const double boxArea = (hi - lo).prod(), fill = p.domain.area() / boxArea;
   const int cells = std::max(2, int(std::lround(std::sqrt(n / fill))) - 1);
@@ -169,19 +177,68 @@ UniformPoint uniformRun(const fem::TestProblem& p, double n) {
   } catch (const InputError&) {  // corners off the grid: the smallest even multiple that fits
     mesh = fem::structuredMesh(p.domain, 2 * ((cells + 1) / 2), 2 * ((cells + 1) / 2));
   }
-  const auto sol = fem::solvePoisson(mesh, p.poisson());
-  const auto err = fem::computeErrors(mesh, sol.u, p.exact());
+  const auto sol = fem::solvePoisson(mesh, p.pde);
+  const auto err = fem::computeErrors(mesh, sol.u, *p.exact);
   return {double(mesh.numVertices()), err.l2, err.h1};
 }
 
-const char* kAdaptHelp = R"(usage: ablmg adapt --problem NAME [--param KEY=VALUE ...] [--cycles K] --target-vertices N1,N2,...
+/// The problem the loop runs, with what the reports say about it.
+struct Problem {
+  adapt::AdaptProblem data;
+  std::string name;      ///< library name, or the config file
+  nlohmann::json echo;   ///< {"u": formula, "params": ...} or the config's problem object
+};
+
+Problem libraryProblem(const std::string& name, const std::map<std::string, double>& params) {
+  const fem::TestProblem p = fem::makeProblem(name, params);
+  return {adapt::adaptProblem(p), p.name, {{"u", p.formula}, {"params", p.params}}};
+}
+
+/// CONFIG.json: {"domain": {...} (as in docs/config.md; only for an expression problem),
+/// "problem": name or {kappa, f, dirichlet, neumann, exact} (cli/problem_config.hpp), "params"}.
+Problem configProblem(const std::string& path) {
+  const nlohmann::json config = readJsonFile(path);
+  requireKeys(config, path, {"domain", "problem", "params"});
+  ABLMG_REQUIRE(config.contains("problem"), path << ": problem: missing (a library name or {\"f\": ..., \"dirichlet\": ...})");
+  ProblemSetup setup = problemFromJson(config, path);
+  Problem p;
+  p.name = setup.domain ? config["problem"].get<std::string>() : path;
+  p.echo = setup.echo;
+  if (setup.domain) {
+    ABLMG_REQUIRE(!config.contains("domain"), path << ": domain: a library problem has its own domain");
+    p.data.domain = *setup.domain;
+  } else {
+    ABLMG_REQUIRE(config.contains("domain"), path << ": domain: missing (needed for an expression problem)");
+    p.data.domain = parseDomainJson(config["domain"], path, std::filesystem::path(path).parent_path().string());
+  }
+  p.data.pde = std::move(setup.problem);
+  if (setup.exact.u) p.data.exact = std::move(setup.exact);
+  return p;
+}
+
+/// True when structuredMesh can grid the domain (axis-parallel sides).
+bool uniformFits(const Domain& domain) {
+  for (const auto& loop : domain.loops())
+    for (std::size_t k = 0; k < loop.points.size(); ++k) {
+      const Vec2 d = loop.points[(k + 1) % loop.points.size()] - loop.points[k];
+      if (d.x() != 0 && d.y() != 0) return false;
+    }
+  return true;
+}
+
+const char* kAdaptHelp = R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
-fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...). Cycle k targets N_k vertices
+fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.json's own:
+  {"domain": {...as for ablmg mesh...},
+   "problem": {"kappa": "1", "f": "expr", "dirichlet": {"1": "expr", "default": "expr"},
+               "neumann": {"2": "expr"}, "exact": {"u": "expr", "ux": "expr", "uy": "expr"}}}
+(expressions in x, y; tags as the domain's; "exact" optional: without it no errors are
+computed and convergence.png is not drawn; examples/configs/adapt_*.json). Cycle k targets N_k vertices
 (the last N repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
@@ -199,13 +256,14 @@ int runAdapt(const std::vector<std::string>& argv) {
       return 0;
     }
   Args a = parseArgs(argv);
-  const fem::TestProblem problem = fem::makeProblem(a.problem, a.params);
+  const Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
+  const bool exact = problem.data.exact.has_value();
   namespace fs = std::filesystem;
   fs::create_directories(a.outDir);
 
   // 1. Resolved options.
-  std::cout << "ablmg adapt: problem " << problem.name << ": u = " << problem.formula << "\n  params:";
-  for (const auto& [k, v] : problem.params) std::cout << " " << k << "=" << v;
+  std::cout << "ablmg adapt: problem " << problem.name << ": " << problem.echo.dump();
+  if (!exact) std::cout << "\n  no exact solution: errors are not computed (NaN in the reports)";
   std::cout << "\n  cycles " << (a.options.cycles > 0 ? a.options.cycles : int(a.options.targetVertices.size()))
             << ", target vertices";
   for (double n : a.options.targetVertices) std::cout << " " << n;
@@ -219,23 +277,28 @@ int runAdapt(const std::vector<std::string>& argv) {
 
   // 2. The loop; each cycle prints its line and writes its .vtu.
   Mesh2 finalMesh;
-  const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem, a.options, [&](const adapt::CycleData& c) {
+  const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem.data, a.options, [&](const adapt::CycleData& c) {
     const auto& r = c.report;
-    std::printf("Cycle %d: N=%ld T=%ld L2=%.3e H1=%.3e L2interp=%.3e q=%.3f/%.3f  t: solve %.2fs recover "
-                "%.2fs metric %.2fs mesh %.2fs\n",
-                r.cycle, r.vertices, r.triangles, r.l2, r.h1, r.l2Interp, r.qMean, r.qMin, r.tSolve, r.tRecover, r.tMetric,
-                r.tMesh);
+    std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
+    if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
+    std::printf(" q=%.3f/%.3f  t: solve %.2fs recover %.2fs metric %.2fs mesh %.2fs\n", r.qMean, r.qMin, r.tSolve,
+                r.tRecover, r.tMetric, r.tMesh);
     std::fflush(stdout);
     if (a.vtu) {
       const int n = c.mesh.numVertices();
       io::Field uh{"u", 1, std::vector<double>(c.u.data(), c.u.data() + n)}, ue{"u_exact", 1, {}}, err{"error", 1, {}};
-      for (int v = 0; v < n; ++v) {
-        ue.values.push_back(problem.u(c.mesh.vertices[v].x(), c.mesh.vertices[v].y()));
-        err.values.push_back(ue.values.back() - uh.values[v]);
+      std::vector<io::Field> points{uh}, cells;
+      if (exact) {
+        for (int v = 0; v < n; ++v) {
+          ue.values.push_back(problem.data.exact->u(c.mesh.vertices[v].x(), c.mesh.vertices[v].y()));
+          err.values.push_back(ue.values.back() - uh.values[v]);
+        }
+        points.push_back(ue);
+        points.push_back(err);
+        cells.push_back({"l2_error", 1, c.errors.elementL2});
+        if (!c.errors.elementH1.empty()) cells.push_back({"h1_error", 1, c.errors.elementH1});
       }
-      std::vector<io::Field> points{uh, ue, err};
       for (auto& f : io::metricFields(c.meshMetric)) points.push_back(std::move(f));
-      std::vector<io::Field> cells{{"l2_error", 1, c.errors.elementL2}, {"h1_error", 1, c.errors.elementH1}};
       io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points, cells);
     }
     if (a.medit) {  // the mesh and the metric computed on it for the next cycle, as MMG/FreeFem++ read them
@@ -247,9 +310,11 @@ int runAdapt(const std::vector<std::string>& argv) {
   });
 
   // 3. Rates and the error check.
-  std::printf("Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
-              report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
-  std::printf("Errors decrease from the first to the last cycle: %s\n", report.errorsDecrease ? "yes" : "NO");
+  if (exact) {
+    std::printf("Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
+                report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
+    std::printf("Errors decrease from the first to the last cycle: %s\n", report.errorsDecrease ? "yes" : "NO");
+  }
   if (report.stoppedEarly) std::printf("Stopped after cycle %d: error target reached\n", report.cycles.back().cycle);
 
   // 4. Reports: CSV, JSON.
@@ -261,10 +326,11 @@ int runAdapt(const std::vector<std::string>& argv) {
          << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh << ','
          << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << '\n';
   });
+  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["problem"] = problem.name;
-  j["formula"] = problem.formula;
-  j["params"] = problem.params;
+  j["definition"] = problem.echo;
+  if (!a.config.empty()) j["config"] = a.config;
   j["options"] = {{"target_vertices", a.options.targetVertices},
                   {"cycles", int(report.cycles.size())},
                   {"hessian", adapt::toString(a.options.hessian)},
@@ -281,11 +347,10 @@ int runAdapt(const std::vector<std::string>& argv) {
                   {"seed", a.options.mesh.placement.seed}};
   for (const auto& r : report.cycles)
     j["cycles"].push_back({{"cycle", r.cycle},        {"vertices", r.vertices},   {"triangles", r.triangles},
-                           {"target_vertices", r.targetVertices}, {"l2_error", r.l2}, {"h1_error", r.h1},
-                           {"l2_interp_error", r.l2Interp}, {"max_vertex_error", r.maxVertex}, {"q_mean", r.qMean},
+                           {"target_vertices", r.targetVertices}, {"l2_error", num(r.l2)}, {"h1_error", num(r.h1)},
+                           {"l2_interp_error", num(r.l2Interp)}, {"max_vertex_error", num(r.maxVertex)}, {"q_mean", r.qMean},
                            {"q_min", r.qMin},          {"t_solve", r.tSolve},     {"t_recover", r.tRecover},
                            {"t_metric", r.tMetric},    {"t_mesh", r.tMesh}});
-  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   j["rates"] = {{"window", report.rateWindow}, {"l2", num(report.l2Rate)}, {"h1", num(report.h1Rate)},
                 {"l2_interp", num(report.l2InterpRate)}};
   j["errors_decrease"] = report.errorsDecrease;
@@ -302,11 +367,13 @@ int runAdapt(const std::vector<std::string>& argv) {
     curves[1].y.push_back(r.h1);
     curves[2].y.push_back(r.l2Interp);
   }
-  if (a.uniform) {
+  if (a.uniform && exact && !uniformFits(problem.data.domain)) {
+    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel)\n");
+  } else if (a.uniform && exact) {
     io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
     for (const auto& r : report.cycles) {
       if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5) continue;
-      const auto u = uniformRun(problem, r.targetVertices);
+      const auto u = uniformRun(problem.data, r.targetVertices);
       ul.x.push_back(u.vertices);
       ul.y.push_back(u.l2);
       uh.x.push_back(u.vertices);
@@ -318,16 +385,17 @@ int runAdapt(const std::vector<std::string>& argv) {
     curves.push_back(uh);
   }
   io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(), [&](std::ostream& os) { os << j.dump(2) << "\n"; });
-  io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
-                     "ablmg adapt: " + problem.name);
+  if (exact)
+    io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
+                       "ablmg adapt: " + problem.name);
   io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh);
-  std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json, convergence.png, final_mesh.png"
-            << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
+  std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json" << (exact ? ", convergence.png" : "")
+            << ", final_mesh.png" << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
   return 0;
 }
 
 } // namespace
 
-ABLMG_COMMAND("adapt", "adaptive solve loop on a library problem: solve, recover, metric, remesh", runAdapt)
+ABLMG_COMMAND("adapt", "adaptive solve loop (library problem or CONFIG.json): solve, recover, metric, remesh", runAdapt)
 
 } // namespace ablmg::cli

@@ -293,6 +293,10 @@ std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const st
 
 } // namespace
 
+Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const std::string& baseDir) {
+  return parseDomain(j, Where{file, "domain"}, baseDir);
+}
+
 void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where) {
   const std::size_t colon = where.find(": ");
   const Where w = colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};

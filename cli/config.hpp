@@ -49,6 +49,10 @@ Config loadConfig(const std::string& path);
 /// From text; `name` is used in messages, `baseDir` resolves relative paths.
 Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir);
 
+/// The "domain" object of a config (any of the forms above), for other commands' configs;
+/// messages read "FILE: domain.<key>: ...".
+Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const std::string& baseDir);
+
 /// Fills `options` from a JSON object {"placement": {...}, "connect": {...}}; `where` prefixes
 /// messages (e.g. "config.json: options").
 void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where);

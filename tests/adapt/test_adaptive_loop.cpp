@@ -83,3 +83,33 @@ TEST(AdaptiveLoop, RejectsBadOptions) {
   o.hgrad = 0.5;
   EXPECT_THROW(runAdaptiveLoop(problem, o), InputError);
 }
+
+TEST(AdaptiveLoop, ProblemWithoutExactSolution) {
+  // −Δu = 1 on the unit square, u = 0 on the boundary (Prandtl's torsion problem): no closed
+  // form, but its maximum, at the centre, is known from the Fourier series: 0.0736713533.
+  AdaptProblem p;
+  p.domain = Domain::rectangle(0, 0, 1, 1);
+  p.pde.f = 1.0;
+  p.pde.setDirichletEverywhere(0.0);
+  AdaptOptions o;
+  o.targetVertices = {400, 1600};
+  double uMax = 0;
+  const AdaptReport r = runAdaptiveLoop(p, o, [&](const CycleData& c) {
+    EXPECT_TRUE(c.mesh.validate(1.0, 1e-9).ok) << "cycle " << c.report.cycle;
+    EXPECT_TRUE(std::isnan(c.errors.l2) && c.errors.elementL2.empty());
+    uMax = c.u.maxCoeff();
+  });
+  ASSERT_EQ(r.cycles.size(), 2u);
+  EXPECT_NEAR(uMax, 0.0736713533, 2e-4);
+  for (const auto& c : r.cycles) EXPECT_TRUE(std::isnan(c.l2) && std::isnan(c.h1));
+  EXPECT_TRUE(std::isnan(r.l2Rate) && std::isnan(r.h1Rate));
+  EXPECT_FALSE(r.errorsDecrease);
+  EXPECT_NEAR(double(r.cycles[1].vertices) / 1600, 1.0, 0.15);
+
+  // What needs an exact solution, or a fixed mesh, is refused up front.
+  o.stopL2 = 1e-3;
+  EXPECT_THROW(runAdaptiveLoop(p, o), InputError);
+  o.stopL2 = 0;
+  p.pde.f = fem::ScalarData::values({1, 2, 3});
+  EXPECT_THROW(runAdaptiveLoop(p, o), InputError);
+}

@@ -28,6 +28,52 @@ if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "success")
   endif()
   return()
 endif()
+if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "config_matches_library")
+  # A problem written as expressions in a config (examples/configs/adapt_peak_expressions.json)
+  # gives the library problem's loop: the same vertices, errors and qualities in every cycle.
+  foreach(kind config library)
+    file(REMOVE_RECURSE "${OUTDIR}_${kind}")
+    if(kind STREQUAL "config")
+      set(_what "${CONFIG}")
+    else()
+      set(_what --problem peak)
+    endif()
+    execute_process(COMMAND "${BIN}" adapt ${_what} --target-vertices 300,900 --uniform off --vtu off --out-dir "${OUTDIR}_${kind}"
+                    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+    if(NOT rc EQUAL 0)
+      message(FATAL_ERROR "${kind}: exit ${rc}\n${out}${err}")
+    endif()
+    file(STRINGS "${OUTDIR}_${kind}/convergence.csv" _rows)
+    set(_${kind} "")
+    foreach(_row ${_rows})
+      string(REGEX MATCH "^([^,]*,){8}" _head "${_row}")  # cycle … q_min: no times
+      list(APPEND _${kind} "${_head}")
+    endforeach()
+  endforeach()
+  if(NOT _config STREQUAL _library)
+    message(FATAL_ERROR "config and library loops differ:\n${_config}\n${_library}")
+  endif()
+  return()
+endif()
+if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "no_exact")
+  # A config without an exact solution: meshes and reports, errors NaN, no convergence plot.
+  file(REMOVE_RECURSE "${OUTDIR}")
+  execute_process(COMMAND "${BIN}" adapt "${CONFIG}" --target-vertices 300,600 --vtu off --out-dir "${OUTDIR}"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "exit ${rc}\n${out}${err}")
+  endif()
+  file(STRINGS "${OUTDIR}/convergence.csv" _lines)
+  list(LENGTH _lines _n)
+  list(GET _lines 2 _row)
+  if(NOT _n EQUAL 3 OR NOT _row MATCHES "^1,[0-9]+,[0-9]+,nan,nan,nan,0\\.9")
+    message(FATAL_ERROR "unexpected CSV:\n${_lines}")
+  endif()
+  if(NOT EXISTS "${OUTDIR}/final_mesh.png" OR EXISTS "${OUTDIR}/convergence.png" OR NOT out MATCHES "no exact solution")
+    message(FATAL_ERROR "outputs or message wrong:\n${out}")
+  endif()
+  return()
+endif()
 if(CMAKE_SCRIPT_MODE_FILE)
   file(REMOVE_RECURSE "${OUTDIR}")
   separate_arguments(_args UNIX_COMMAND "${ARGS}")
@@ -46,8 +92,17 @@ endif()
 
 set(_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_adapt)
 file(MAKE_DIRECTORY ${_dir})
+file(WRITE ${_dir}/bad_f.json "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"problem\": {\"f\": \"1 +* x\", \"dirichlet\": {\"default\": \"0\"}}}\n")
+file(WRITE ${_dir}/no_domain.json "{\"problem\": {\"f\": \"1\", \"dirichlet\": {\"default\": \"0\"}}}\n")
+file(WRITE ${_dir}/library_domain.json "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"problem\": \"peak\"}\n")
 foreach(case
-    "no_problem|--target-vertices 100|--problem NAME is required"
+    "no_problem|--target-vertices 100|give either --problem NAME or CONFIG.json"
+    "problem_and_config|--problem peak ${PROJECT_SOURCE_DIR}/examples/configs/adapt_lshape_load.json --target-vertices 100|give either --problem NAME or CONFIG.json"
+    "config_stop_without_exact|${PROJECT_SOURCE_DIR}/examples/configs/adapt_lshape_load.json --target-vertices 300 --stop-l2 1e-3|stopL2/stopH1 need the exact solution"
+    "config_missing|${_dir}/nonexistent.json --target-vertices 300|nonexistent.json: cannot open"
+    "config_bad_expression|${_dir}/bad_f.json --target-vertices 300|bad_f.json: problem.f: bad expression"
+    "config_no_domain|${_dir}/no_domain.json --target-vertices 300|no_domain.json: domain: missing"
+    "config_library_domain|${_dir}/library_domain.json --target-vertices 300|library_domain.json: domain: a library problem has its own domain"
     "no_targets|--problem wavefront|--target-vertices N1,N2,... is required"
     "unknown_problem|--problem wavefrnt --target-vertices 500|unknown problem 'wavefrnt'"
     "unknown_param|--problem wavefront --param beta=1 --target-vertices 500|unknown parameter 'beta'"
@@ -87,3 +142,14 @@ add_test(NAME cli_adapt_deterministic_across_threads
          COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DOUT=${_dir}/determinism
                  -P ${CMAKE_CURRENT_LIST_DIR}/check_identical_adapt.cmake.in)
 set_tests_properties(cli_adapt_deterministic_across_threads PROPERTIES LABELS cli)
+
+add_test(NAME cli_adapt_config_matches_library
+         COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=config_matches_library
+                 -DCONFIG=${PROJECT_SOURCE_DIR}/examples/configs/adapt_peak_expressions.json -DOUTDIR=${_dir}/peak
+                 -P ${CMAKE_CURRENT_LIST_FILE})
+set_tests_properties(cli_adapt_config_matches_library PROPERTIES LABELS cli)
+add_test(NAME cli_adapt_config_no_exact
+         COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=no_exact
+                 -DCONFIG=${PROJECT_SOURCE_DIR}/examples/configs/adapt_lshape_load.json -DOUTDIR=${_dir}/no_exact
+                 -P ${CMAKE_CURRENT_LIST_FILE})
+set_tests_properties(cli_adapt_config_no_exact PROPERTIES LABELS cli)
