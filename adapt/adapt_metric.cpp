@@ -37,10 +37,15 @@ QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics
 
 std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
                                  const AdaptOptions& options, double* tRecover, double* tMetric, GradationStats* gradation) {
-  auto t0 = Clock::now();
+  const auto t0 = Clock::now();
   const auto hessians = recoverHessians(mesh, u, options.hessian);
   if (tRecover) *tRecover = since(t0);
-  t0 = Clock::now();
+  return metricFromRecovered(mesh, hessians, targetVertices, options, tMetric, gradation);
+}
+
+std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
+                                         const AdaptOptions& options, double* tMetric, GradationStats* gradation) {
+  const auto t0 = Clock::now();
   MetricOptions mo = options.metric;
   mo.targetVertices = targetVertices;
   if (!std::isfinite(mo.hmax)) {  // keep a few elements across the domain where H ≈ 0

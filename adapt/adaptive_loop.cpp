@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/metric_field.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -105,10 +106,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     const bool reached = (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
     report.stoppedEarly = reached && k + 1 < cycles;
     const bool last = k + 1 == cycles || reached;
+    // Recovered Hessians: the error estimate of every cycle, and the next metric.
+    t0 = Clock::now();
+    const auto hessians = recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
+    row.tRecover = since(t0);
+    row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
       GradationStats gs;
-      next = adaptMetric(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), target(k + 1), options,
-                         &row.tRecover, &row.tMetric, &gs);
+      next = metricFromRecovered(current.mesh, hessians, target(k + 1), options, &row.tMetric, &gs);
       row.gradationSweeps = gs.sweeps;
     }
     report.cycles.push_back(row);
@@ -128,16 +133,19 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
 
   const int n = int(report.cycles.size());
   report.rateWindow = std::min(4, n);
-  report.l2Rate = report.h1Rate = report.l2InterpRate = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double> nv, l2, h1, li;
+  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
+  std::vector<double> nv, l2, h1, li, le;
   for (const auto& c : report.cycles) {
     nv.push_back(double(c.vertices));
     l2.push_back(c.l2);
     h1.push_back(c.h1);
     li.push_back(c.l2Interp);
+    le.push_back(c.l2InterpEstimate);
   }
   bool distinct = false;
   for (int i = n - report.rateWindow + 1; i < n; ++i) distinct = distinct || nv[i] != nv[n - report.rateWindow];
+  const bool positive = std::all_of(le.end() - report.rateWindow, le.end(), [](double e) { return e > 0; });
+  if (n >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
   if (n >= 2 && distinct && problem.exact) {
     report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
     report.h1Rate = logLogSlope(nv, h1, report.rateWindow);

@@ -26,6 +26,7 @@
 /// only non-deterministic numbers in the report.
 #include "adapt/gradation.hpp"
 #include "adapt/hessian_recovery.hpp"
+#include "adapt/interpolation_error.hpp"
 #include "adapt/metric_from_hessian.hpp"
 #include "fem/error_norms.hpp"
 #include "fem/solve.hpp"
@@ -87,7 +88,10 @@ struct CycleReport {
   int cycle = 0;
   double targetVertices = 0;
   long vertices = 0, triangles = 0;
-  double l2 = 0, h1 = 0, l2Interp = 0, maxVertex = 0;
+  double l2 = 0, h1 = 0, l2Interp = 0, maxVertex = 0;  ///< NaN without an exact solution
+  /// ‖u − I_h u‖_L2 estimated from u_h's recovered Hessians (interpolation_error.hpp): the
+  /// error measure that needs no exact solution; compare with l2Interp where both exist.
+  double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
   long predictedVertices = 0;   ///< the mesher's estimate N* for mesh_k
@@ -98,6 +102,7 @@ struct AdaptReport {
   std::vector<CycleReport> cycles;
   int rateWindow = 0;                 ///< cycles used by the fitted rates (last min(4, K))
   double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
+  double l2InterpEstimateRate = 0;                  ///< the same for l2InterpEstimate (known without exact u)
   bool errorsDecrease = false;        ///< l2 and h1 fall from the first cycle to the last
   bool stoppedEarly = false;          ///< a stop criterion ended the loop before `cycles`
 };
@@ -143,6 +148,11 @@ mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, cons
 std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
                                  const AdaptOptions& options, double* tRecover = nullptr, double* tMetric = nullptr,
                                  GradationStats* gradation = nullptr);
+
+/// adaptMetric's second half, on Hessians already recovered (one per vertex of `mesh`).
+std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
+                                         const AdaptOptions& options, double* tMetric = nullptr,
+                                         GradationStats* gradation = nullptr);
 
 /// meshDomain(domain, BackgroundMetricField(mesh, metric), options).
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
