@@ -268,11 +268,13 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         break;
       }
     }
-    const double d2 = metrics_[i].squaredLength(nodes_.positions[i] - before);
-    if (d2 > moveEps2_) {
-      moved_[i] = stamp_;
+    // Travel is tracked for every move, however small (creeping bubbles add up); only moves
+    // above moveEps2_ count for the active set.
+    const Vec2 step = nodes_.positions[i] - before;
+    if (step.x() != 0 || step.y() != 0) {
       movedSinceRefresh_[i] = 1;
       if (i < int(refPos_.size())) disp_[i] = std::sqrt(metrics_[i].squaredLength(nodes_.positions[i] - refPos_[i]));
+      if (metrics_[i].squaredLength(step) > moveEps2_) moved_[i] = stamp_;
     }
   }
 }

@@ -76,6 +76,9 @@ public:
   /// O(1) right after updateActivity() (which takes it in its pass over the bubbles), O(n)
   /// after anything else that moves or resets travel.
   double maxTravelSinceRefresh() const;
+  /// Reference positions: where each bubble was at the last clearMoved()/resetTravel(); its
+  /// travel is measured from there. Empty before the first clearMoved().
+  const std::vector<Vec2>& referencePositions() const { return refPos_; }
   /// Bubbles whose travel since the last clearMoved()/resetTravel() exceeds `threshold` (ascending).
   std::vector<int> travellers(double threshold) const;
   /// Travel of these bubbles counts again from their current positions (after a local refresh).
