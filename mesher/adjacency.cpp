@@ -13,6 +13,11 @@
 namespace ablmg::mesher {
 namespace {
 
+/// Parallel threshold for loops that recompute rows from the two-ring (~0.5 µs per row, 100×
+/// a cheap per-bubble loop): the dynamics' local refreshes recompute 10²–10⁴ rows per step,
+/// which kMinParallelItems left on one thread below 2048 rows.
+constexpr int kMinParallelRows = 128;
+
 /// Half-widths (x, y) of the bounding box of {d : dᵀ M d ≤ r²}: r·√((M⁻¹)₁₁), r·√((M⁻¹)₂₂).
 /// If the averaged metric distance of a pair is ≤ r then the smaller of |d|_{M_i}, |d|_{M_j}
 /// is ≤ r, so every pair lies in the box of one of its two nodes.
@@ -121,7 +126,7 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   r.start.assign(std::size_t(nd), 0);
   r.thread.assign(std::size_t(nd), 0);
   const double r2 = radius * radius;
-#pragma omp parallel if (nd >= kMinParallelItems)
+#pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
@@ -264,7 +269,7 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   const int nd = int(dirty.size());
   std::vector<std::vector<std::pair<int, int>>> gainOf(static_cast<std::size_t>(omp_get_max_threads())),
       loseOf(gainOf.size());
-#pragma omp parallel if (nd >= kMinParallelItems)
+#pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
@@ -324,10 +329,11 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
     outsideStart.push_back(int(outside.size()));
     rows.insert(rows.end(), touched.begin(), touched.end());
   }
-  // rows: dirty (ascending) then touched (ascending, disjoint from dirty); sort a permutation.
+  // rows: dirty (ascending) then touched (ascending, disjoint from dirty): merge the two runs
+  // into a permutation that sorts them.
   std::vector<int> order(rows.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int p, int q) { return rows[std::size_t(p)] < rows[std::size_t(q)]; });
+  for (std::size_t p = 0, q = std::size_t(nd), k = 0; k < rows.size(); ++k)
+    order[k] = int(q == rows.size() || (p < std::size_t(nd) && rows[p] < rows[q]) ? p++ : q++);
   std::vector<int> sortedRows(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) sortedRows[k] = rows[std::size_t(order[k])];
   replaceRows(lists, sortedRows, [&](int k) -> std::span<const int> {
