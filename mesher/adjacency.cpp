@@ -131,37 +131,48 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
     // Candidates seen for the current row: one bit per node (n/8 bytes, cache-resident),
-    // cleared after the row from the list of the ids set.
+    // cleared after the row from the candidate list. Both passes below are branch-free
+    // (append, then advance the end only if the id is new / within the radius): whether a
+    // two-ring id was seen before is a coin flip that mispredicted about every other time.
     std::vector<std::uint64_t> seen(lo < hi ? std::size_t(n) / 64 + 1 : 0, 0);
-    std::vector<int> tested;
+    std::vector<int> cand;
     auto& out = r.buf[std::size_t(t)];
     for (int k = lo; k < hi; ++k) {
       const int i = rows[std::size_t(k)];
       const std::size_t start = out.size();
       r.start[std::size_t(k)] = int(start);
       r.thread[std::size_t(k)] = t;
-      const Vec2 xi = x[i];
-      const Metric2& mi = m[i];
-      tested.clear();
-      auto mark = [&](int c) {
+      std::size_t bound = 0;
+      for (int j : old.neighbours(i)) bound += 1 + old.neighbours(j).size();
+      if (cand.size() < bound) cand.resize(bound);
+      // 1. The distinct ids of the two-ring (i excluded), in first-visit order.
+      seen[std::size_t(i) >> 6] |= std::uint64_t(1) << (i & 63);
+      std::size_t nc = 0;
+      auto visit = [&](int c) {
         std::uint64_t& word = seen[std::size_t(c) >> 6];
         const std::uint64_t bit = std::uint64_t(1) << (c & 63);
-        if (word & bit) return false;
+        cand[nc] = c;
+        nc += (word & bit) == 0;
         word |= bit;
-        tested.push_back(c);
-        return true;
-      };
-      mark(i);
-      auto test = [&](int c) {
-        if (!mark(c)) return;
-        const Vec2 d = x[c] - xi;
-        if (mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2) out.push_back(c);  // withinMetricRadius
       };
       for (int j : old.neighbours(i)) {
-        test(j);
-        for (int c : old.neighbours(j)) test(c);
+        visit(j);
+        for (int c : old.neighbours(j)) visit(c);
       }
-      for (int c : tested) seen[std::size_t(c) >> 6] = 0;
+      // 2. Those within the radius (withinMetricRadius).
+      const Vec2 xi = x[i];
+      const Metric2& mi = m[i];
+      out.resize(start + nc);
+      std::size_t kept = start;
+      for (std::size_t q = 0; q < nc; ++q) {
+        const int c = cand[q];
+        seen[std::size_t(c) >> 6] = 0;
+        const Vec2 d = x[c] - xi;
+        out[kept] = c;
+        kept += mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2;
+      }
+      seen[std::size_t(i) >> 6] = 0;
+      out.resize(kept);
       for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
         const int v = out[q];
         std::size_t b = q;
