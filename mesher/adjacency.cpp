@@ -228,6 +228,18 @@ template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const i
   lists = std::move(a);
 }
 
+/// Sorts (row, partner) pairs whose partners come in ascending order (the pairs of one centre
+/// after another): a stable counting sort by row, O(pairs + n); the same order as std::sort
+/// since the pairs are distinct (3·10³ pairs per step of the ring remesh).
+void sortByRow(std::vector<std::pair<int, int>>& pairs, int n) {
+  std::vector<int> start(std::size_t(n) + 1, 0);
+  for (const auto& p : pairs) ++start[std::size_t(p.first) + 1];
+  for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
+  std::vector<std::pair<int, int>> sorted(pairs.size());
+  for (const auto& p : pairs) sorted[std::size_t(start[std::size_t(p.first)]++)] = p;
+  pairs.swap(sorted);
+}
+
 /// Marks the nodes within two hops of the flagged ones (flags modified in place).
 void growTwoHops(const AdjacencyLists& lists, std::vector<char>& flag) {
   const int n = lists.size();
@@ -310,32 +322,28 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   std::vector<int> rows = dirty;
   std::vector<int> outside, outsideStart;  // new rows of the touched outside rows, back to back
   if (!gain.empty() || !lose.empty()) {
-    std::sort(gain.begin(), gain.end());
-    std::sort(lose.begin(), lose.end());
-    std::vector<int> touched;
-    for (const auto& g : gain) touched.push_back(g.first);
-    for (const auto& l : lose) touched.push_back(l.first);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    for (int b : touched) {
+    sortByRow(gain, n);
+    sortByRow(lose, n);
+    std::vector<int> touched;  // outside rows with a change, ascending
+    for (std::size_t g0 = 0, l0 = 0; g0 < gain.size() || l0 < lose.size();) {
+      const int b = l0 == lose.size() || (g0 < gain.size() && gain[g0].first < lose[l0].first) ? gain[g0].first
+                                                                                              : lose[l0].first;
+      std::size_t g1 = g0, l1 = l0;
+      while (g1 < gain.size() && gain[g1].first == b) ++g1;
+      while (l1 < lose.size() && lose[l1].first == b) ++l1;
+      touched.push_back(b);
       outsideStart.push_back(int(outside.size()));
-      const auto o = lists.neighbours(b);
-      const auto g0 = std::lower_bound(gain.begin(), gain.end(), std::pair<int, int>{b, -1});
-      auto g1 = g0;
-      while (g1 != gain.end() && g1->first == b) ++g1;
-      const auto l0 = std::lower_bound(lose.begin(), lose.end(), std::pair<int, int>{b, -1});
-      auto l1 = l0;
-      while (l1 != lose.end() && l1->first == b) ++l1;
       // Merge the old row (minus the lost partners) with the gained ones; all three sorted.
-      auto g = g0;
-      auto l = l0;
-      for (int v : o) {
-        while (g != g1 && g->second < v) outside.push_back((g++)->second);
-        while (l != l1 && l->second < v) ++l;
-        if (l != l1 && l->second == v) continue;
+      std::size_t g = g0, l = l0;
+      for (int v : lists.neighbours(b)) {
+        while (g != g1 && gain[g].second < v) outside.push_back(gain[g++].second);
+        while (l != l1 && lose[l].second < v) ++l;
+        if (l != l1 && lose[l].second == v) continue;
         outside.push_back(v);
       }
-      while (g != g1) outside.push_back((g++)->second);
+      while (g != g1) outside.push_back(gain[g++].second);
+      g0 = g1;
+      l0 = l1;
     }
     outsideStart.push_back(int(outside.size()));
     rows.insert(rows.end(), touched.begin(), touched.end());
