@@ -49,6 +49,16 @@ public:
       for (int x = x0; x <= x1; ++x)
         for (int id = head_[y * nx_ + x]; id >= 0; id = next_[id]) f(id);
   }
+  /// Whether pred(id) holds for some id in cells overlapping the box [p − r, p + r]
+  /// (incremental form); stops at the first one.
+  template <class Pred> bool anyIncremental(const Vec2& p, double r, Pred&& pred) const {
+    const int x0 = cellX(p.x() - r), x1 = cellX(p.x() + r), y0 = cellY(p.y() - r), y1 = cellY(p.y() + r);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x)
+        for (int id = head_[y * nx_ + x]; id >= 0; id = next_[id])
+          if (pred(id)) return true;
+    return false;
+  }
   /// Calls f(id) for every id in cells overlapping the box p ± (rx, ry) (static form).
   template <class F> void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
     const int x0 = cellX(p.x() - rx), x1 = cellX(p.x() + rx), y0 = cellY(p.y() - ry), y1 = cellY(p.y() + ry);

@@ -13,6 +13,11 @@
 namespace ablmg::mesher {
 namespace {
 
+/// Parallel threshold for loops that recompute rows from the two-ring (~0.5 µs per row, 100×
+/// a cheap per-bubble loop): the dynamics' local refreshes recompute 10²–10⁴ rows per step,
+/// which kMinParallelItems left on one thread below 2048 rows.
+constexpr int kMinParallelRows = 128;
+
 /// Half-widths (x, y) of the bounding box of {d : dᵀ M d ≤ r²}: r·√((M⁻¹)₁₁), r·√((M⁻¹)₂₂).
 /// If the averaged metric distance of a pair is ≤ r then the smaller of |d|_{M_i}, |d|_{M_j}
 /// is ≤ r, so every pair lies in the box of one of its two nodes.
@@ -121,42 +126,53 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   r.start.assign(std::size_t(nd), 0);
   r.thread.assign(std::size_t(nd), 0);
   const double r2 = radius * radius;
-#pragma omp parallel if (nd >= kMinParallelItems)
+#pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
     // Candidates seen for the current row: one bit per node (n/8 bytes, cache-resident),
-    // cleared after the row from the list of the ids set.
+    // cleared after the row from the candidate list. Both passes below are branch-free
+    // (append, then advance the end only if the id is new / within the radius): whether a
+    // two-ring id was seen before is a coin flip that mispredicted about every other time.
     std::vector<std::uint64_t> seen(lo < hi ? std::size_t(n) / 64 + 1 : 0, 0);
-    std::vector<int> tested;
+    std::vector<int> cand;
     auto& out = r.buf[std::size_t(t)];
     for (int k = lo; k < hi; ++k) {
       const int i = rows[std::size_t(k)];
       const std::size_t start = out.size();
       r.start[std::size_t(k)] = int(start);
       r.thread[std::size_t(k)] = t;
-      const Vec2 xi = x[i];
-      const Metric2& mi = m[i];
-      tested.clear();
-      auto mark = [&](int c) {
+      std::size_t bound = 0;
+      for (int j : old.neighbours(i)) bound += 1 + old.neighbours(j).size();
+      if (cand.size() < bound) cand.resize(bound);
+      // 1. The distinct ids of the two-ring (i excluded), in first-visit order.
+      seen[std::size_t(i) >> 6] |= std::uint64_t(1) << (i & 63);
+      std::size_t nc = 0;
+      auto visit = [&](int c) {
         std::uint64_t& word = seen[std::size_t(c) >> 6];
         const std::uint64_t bit = std::uint64_t(1) << (c & 63);
-        if (word & bit) return false;
+        cand[nc] = c;
+        nc += (word & bit) == 0;
         word |= bit;
-        tested.push_back(c);
-        return true;
-      };
-      mark(i);
-      auto test = [&](int c) {
-        if (!mark(c)) return;
-        const Vec2 d = x[c] - xi;
-        if (mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2) out.push_back(c);  // withinMetricRadius
       };
       for (int j : old.neighbours(i)) {
-        test(j);
-        for (int c : old.neighbours(j)) test(c);
+        visit(j);
+        for (int c : old.neighbours(j)) visit(c);
       }
-      for (int c : tested) seen[std::size_t(c) >> 6] = 0;
+      // 2. Those within the radius (withinMetricRadius).
+      const Vec2 xi = x[i];
+      const Metric2& mi = m[i];
+      out.resize(start + nc);
+      std::size_t kept = start;
+      for (std::size_t q = 0; q < nc; ++q) {
+        const int c = cand[q];
+        seen[std::size_t(c) >> 6] = 0;
+        const Vec2 d = x[c] - xi;
+        out[kept] = c;
+        kept += mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2;
+      }
+      seen[std::size_t(i) >> 6] = 0;
+      out.resize(kept);
       for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
         const int v = out[q];
         std::size_t b = q;
@@ -212,6 +228,18 @@ template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const i
   lists = std::move(a);
 }
 
+/// Sorts (row, partner) pairs whose partners come in ascending order (the pairs of one centre
+/// after another): a stable counting sort by row, O(pairs + n); the same order as std::sort
+/// since the pairs are distinct (3·10³ pairs per step of the ring remesh).
+void sortByRow(std::vector<std::pair<int, int>>& pairs, int n) {
+  std::vector<int> start(std::size_t(n) + 1, 0);
+  for (const auto& p : pairs) ++start[std::size_t(p.first) + 1];
+  for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
+  std::vector<std::pair<int, int>> sorted(pairs.size());
+  for (const auto& p : pairs) sorted[std::size_t(start[std::size_t(p.first)]++)] = p;
+  pairs.swap(sorted);
+}
+
 /// Marks the nodes within two hops of the flagged ones (flags modified in place).
 void growTwoHops(const AdjacencyLists& lists, std::vector<char>& flag) {
   const int n = lists.size();
@@ -264,7 +292,7 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   const int nd = int(dirty.size());
   std::vector<std::vector<std::pair<int, int>>> gainOf(static_cast<std::size_t>(omp_get_max_threads())),
       loseOf(gainOf.size());
-#pragma omp parallel if (nd >= kMinParallelItems)
+#pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
@@ -294,40 +322,37 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   std::vector<int> rows = dirty;
   std::vector<int> outside, outsideStart;  // new rows of the touched outside rows, back to back
   if (!gain.empty() || !lose.empty()) {
-    std::sort(gain.begin(), gain.end());
-    std::sort(lose.begin(), lose.end());
-    std::vector<int> touched;
-    for (const auto& g : gain) touched.push_back(g.first);
-    for (const auto& l : lose) touched.push_back(l.first);
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-    for (int b : touched) {
+    sortByRow(gain, n);
+    sortByRow(lose, n);
+    std::vector<int> touched;  // outside rows with a change, ascending
+    for (std::size_t g0 = 0, l0 = 0; g0 < gain.size() || l0 < lose.size();) {
+      const int b = l0 == lose.size() || (g0 < gain.size() && gain[g0].first < lose[l0].first) ? gain[g0].first
+                                                                                              : lose[l0].first;
+      std::size_t g1 = g0, l1 = l0;
+      while (g1 < gain.size() && gain[g1].first == b) ++g1;
+      while (l1 < lose.size() && lose[l1].first == b) ++l1;
+      touched.push_back(b);
       outsideStart.push_back(int(outside.size()));
-      const auto o = lists.neighbours(b);
-      const auto g0 = std::lower_bound(gain.begin(), gain.end(), std::pair<int, int>{b, -1});
-      auto g1 = g0;
-      while (g1 != gain.end() && g1->first == b) ++g1;
-      const auto l0 = std::lower_bound(lose.begin(), lose.end(), std::pair<int, int>{b, -1});
-      auto l1 = l0;
-      while (l1 != lose.end() && l1->first == b) ++l1;
       // Merge the old row (minus the lost partners) with the gained ones; all three sorted.
-      auto g = g0;
-      auto l = l0;
-      for (int v : o) {
-        while (g != g1 && g->second < v) outside.push_back((g++)->second);
-        while (l != l1 && l->second < v) ++l;
-        if (l != l1 && l->second == v) continue;
+      std::size_t g = g0, l = l0;
+      for (int v : lists.neighbours(b)) {
+        while (g != g1 && gain[g].second < v) outside.push_back(gain[g++].second);
+        while (l != l1 && lose[l].second < v) ++l;
+        if (l != l1 && lose[l].second == v) continue;
         outside.push_back(v);
       }
-      while (g != g1) outside.push_back((g++)->second);
+      while (g != g1) outside.push_back(gain[g++].second);
+      g0 = g1;
+      l0 = l1;
     }
     outsideStart.push_back(int(outside.size()));
     rows.insert(rows.end(), touched.begin(), touched.end());
   }
-  // rows: dirty (ascending) then touched (ascending, disjoint from dirty); sort a permutation.
+  // rows: dirty (ascending) then touched (ascending, disjoint from dirty): merge the two runs
+  // into a permutation that sorts them.
   std::vector<int> order(rows.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int p, int q) { return rows[std::size_t(p)] < rows[std::size_t(q)]; });
+  for (std::size_t p = 0, q = std::size_t(nd), k = 0; k < rows.size(); ++k)
+    order[k] = int(q == rows.size() || (p < std::size_t(nd) && rows[p] < rows[q]) ? p++ : q++);
   std::vector<int> sortedRows(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) sortedRows[k] = rows[std::size_t(order[k])];
   replaceRows(lists, sortedRows, [&](int k) -> std::span<const int> {

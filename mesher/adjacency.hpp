@@ -37,19 +37,25 @@ AdjacencyLists refreshAdjacency(const AdjacencyLists& old, std::span<const Vec2>
 void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> positions, std::span<const Metric2> metrics,
                              double radius, std::span<const char> moved = {});
 
-/// After population edits: `old` lists of the previous nodes, `map` old → new id (−1 =
-/// deleted; empty = identity), new bubbles are ids firstNew … positions.size()−1. Rows of
-/// survivors are remapped; each new bubble is searched in a bucket grid with the radius that
-/// bounds every partner (radius·√2·max h1), and linked both ways. Equal to a rebuild when the
-/// survivors have not moved since `old` was built. O(N) with a small constant.
 /// Local refresh for bubbles that travelled far (`centres`, ascending): their rows are
 /// recomputed from the two-ring, and every other row gains or loses the changed pairs so that
-/// the relation stays symmetric. Exact for all pairs as long as every other bubble moved less
-/// than half the list margin (the caller's travel bookkeeping). The dynamics uses it when some
-/// bubbles outrun the margin (graded metrics: otherwise a global refresh every ~3 steps).
+/// the relation stays symmetric. The dynamics passes the bubbles' reference positions (where
+/// each row was last computed; the centres' are their current ones): the lists then stay the
+/// radius-lists of the reference positions, and a pair missing from them has closed in by at
+/// most the two bubbles' travels since (place_nodes.cpp). The two-ring holds every partner as
+/// long as no bubble is more than (radius − 1.5)/2 from its reference position: a bubble
+/// between the two lies within the radius of both, unless the packing has a hole of metric
+/// radius ≈ 0.8. Used when some bubbles outrun that margin (graded metrics: otherwise a global
+/// refresh every ~3 steps).
 void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> positions, std::span<const Metric2> metrics,
                             double radius, std::span<const int> centres);
 
+/// After population edits: `old` lists of the previous nodes, `map` old → new id (−1 =
+/// deleted; empty = identity), new bubbles are ids firstNew … positions.size()−1. Rows of
+/// survivors are remapped; each new bubble searches a bucket grid of all bubbles within its
+/// reach box, every bubble a grid of the new ones within its own, and pairs are linked both
+/// ways. Equal to a rebuild when the survivors have not moved since `old` was built (the
+/// dynamics passes reference positions, for which that holds). O(N) with a small constant.
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
                               std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
 

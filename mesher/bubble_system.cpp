@@ -147,31 +147,90 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   }
 }
 
-Vec2 BubbleSystem::netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const {
-  const auto& x = nodes_.positions;
-  Vec2 f = Vec2::Zero();
-  const Metric2& mi = metrics_[i];
-  const bool segment = nodes_.kinds[i] == NodeKind::Segment;
-  const Vec2 xi = x[i];
-  for (int j : adj.neighbours(i)) {
-    if (segment && !sameChain(i, j)) continue;  // 1D packing along the loop piece
-    const Vec2 d = x[j] - xi;
-    const double a2 = mi.squaredLength(d), b2 = metrics_[j].squaredLength(d);
-    // w ≥ min(a, b) (harmonic mean), so min(a², b²) > 1.5² means no force; also d = 0.
-    if (!(a2 > 0 && b2 > 0) || std::min(a2, b2) > 2.25) continue;
-    const double a = std::sqrt(a2), b = std::sqrt(b2);
-    const double w = 2.0 * a * b / (a + b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
-    const double fw = interBubbleForce(w, p.k0);
-    if (fw == 0.0) continue;
-    // eq. (8): l0 = l_ij + l_ji = l/(2a) + l/(2b) = l/w, so the pair force fw·l0·d/l = (fw/w)·d
-    // needs neither l = |d| nor l0.
-    f -= (fw / w) * d;
-  }
-  if (segment) {
+[[gnu::always_inline]] inline bool BubbleSystem::pairTerm(const Vec2& xi, const Metric2& mi, int j, const DynamicsParams& p, Vec2& term) const {
+  const Vec2 d = nodes_.positions[j] - xi;
+  const double a2 = mi.squaredLength(d), b2 = metrics_[j].squaredLength(d);
+  // w ≥ min(a, b) (harmonic mean), so min(a², b²) > 1.5² means no force; also d = 0.
+  if (!(a2 > 0 && b2 > 0) || std::min(a2, b2) > 2.25) return false;
+  const double a = std::sqrt(a2), b = std::sqrt(b2);
+  const double w = 2.0 * a * b / (a + b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
+  const double fw = interBubbleForce(w, p.k0);
+  if (fw == 0.0) return false;
+  // eq. (8): l0 = l_ij + l_ji = l/(2a) + l/(2b) = l/w, so the pair force fw·l0·d/l = (fw/w)·d
+  // needs neither l = |d| nor l0.
+  term = (fw / w) * d;
+  return true;
+}
+
+bool BubbleSystem::feels(int i, int j) const {
+  return nodes_.kinds[i] != NodeKind::Segment || sameChain(i, j);  // Segment: 1D packing along the loop piece
+}
+
+Vec2 BubbleSystem::finishForce(int i, Vec2 f) const {
+  if (nodes_.kinds[i] == NodeKind::Segment) {
     const Vec2 t = geo_->tangentAt(nodes_.loops[i], s_[i]);
     f = f.dot(t) * t;
   }
   return f;
+}
+
+Vec2 BubbleSystem::netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const {
+  Vec2 f = Vec2::Zero();
+  const Metric2& mi = metrics_[i];
+  const Vec2 xi = nodes_.positions[i];
+  Vec2 term;
+  for (int j : adj.neighbours(i))
+    if (feels(i, j) && pairTerm(xi, mi, j, p, term)) f -= term;
+  return finishForce(i, f);
+}
+
+double BubbleSystem::computeForcesPairwise(const AdjacencyLists& adj, const DynamicsParams& p) {
+  const int n = nodes_.size();
+  need_.assign(std::size_t(n), 0);
+  for (int i : list_) need_[std::size_t(i)] = 1;
+  double residual = 0;
+#pragma omp parallel reduction(max : residual) if (n >= kMinParallelItems)
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+    const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
+    // force_[i] accumulates i's terms in the order of its row (ascending partner ids), as
+    // netForce() does: partners below the block first (computed here, their owner does not
+    // see this block), then partners in the block below i (added by them in the sweep), then
+    // i's own partners above it.
+    for (int i = lo; i < hi; ++i) {
+      Vec2 f = Vec2::Zero();
+      if (need_[std::size_t(i)]) {
+        const Vec2 xi = nodes_.positions[i];
+        Vec2 term;
+        for (int j : adj.neighbours(i)) {
+          if (j >= lo) break;
+          if (feels(i, j) && pairTerm(xi, metrics_[i], j, p, term)) f -= term;
+        }
+      }
+      force_[i] = f;
+    }
+    for (int i = lo; i < hi; ++i) {
+      const bool needI = need_[std::size_t(i)] != 0;
+      const Vec2 xi = nodes_.positions[i];
+      const Metric2& mi = metrics_[i];
+      Vec2 f = force_[i], term;
+      for (int j : adj.neighbours(i)) {
+        if (j <= i) continue;
+        const bool forI = needI && feels(i, j);
+        const bool forJ = j < hi && need_[std::size_t(j)] && feels(j, i);
+        if (!(forI || forJ) || !pairTerm(xi, mi, j, p, term)) continue;
+        // The pair term is antisymmetric bit for bit: from j's side d is −d exactly, a and b
+        // swap, and w = 2ab/(a+b) rounds the same (2a·b = 2b·a exactly).
+        if (forI) f -= term;
+        if (forJ) force_[j] += term;
+      }
+      if (!needI) continue;
+      force_[i] = finishForce(i, f);
+      res_[i] = std::sqrt(mi.squaredLength(force_[i]));
+      residual = std::max(residual, res_[i]);
+    }
+  }
+  return residual;
 }
 
 double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsParams& p) {
@@ -192,6 +251,8 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
   }
   nextList_.valid = false;
   const int m = int(list_.size());
+  // Mostly awake: each pair once (Newton's third law), same sums bit for bit.
+  if (2 * m >= n) return computeForcesPairwise(adj, p);
   double residual = 0;
 #pragma omp parallel for schedule(static) reduction(max : residual) if (m >= kMinParallelItems)
   for (int k = 0; k < m; ++k) {
@@ -268,11 +329,13 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         break;
       }
     }
-    const double d2 = metrics_[i].squaredLength(nodes_.positions[i] - before);
-    if (d2 > moveEps2_) {
-      moved_[i] = stamp_;
+    // Travel is tracked for every move, however small (creeping bubbles add up); only moves
+    // above moveEps2_ count for the active set.
+    const Vec2 step = nodes_.positions[i] - before;
+    if (step.x() != 0 || step.y() != 0) {
       movedSinceRefresh_[i] = 1;
       if (i < int(refPos_.size())) disp_[i] = std::sqrt(metrics_[i].squaredLength(nodes_.positions[i] - refPos_[i]));
+      if (metrics_[i].squaredLength(step) > moveEps2_) moved_[i] = stamp_;
     }
   }
 }

@@ -76,6 +76,9 @@ public:
   /// O(1) right after updateActivity() (which takes it in its pass over the bubbles), O(n)
   /// after anything else that moves or resets travel.
   double maxTravelSinceRefresh() const;
+  /// Reference positions: where each bubble was at the last clearMoved()/resetTravel(); its
+  /// travel is measured from there. Empty before the first clearMoved().
+  const std::vector<Vec2>& referencePositions() const { return refPos_; }
   /// Bubbles whose travel since the last clearMoved()/resetTravel() exceeds `threshold` (ascending).
   std::vector<int> travellers(double threshold) const;
   /// Travel of these bubbles counts again from their current positions (after a local refresh).
@@ -95,7 +98,17 @@ private:
   /// Segment node i and node j on the same piece of loop between two corners (j a Segment
   /// node of that piece or one of its two corners).
   bool sameChain(int i, int j) const;
+  /// The pair force on the bubble at xi (metric mi) from bubble j, as the vector `term` with
+  /// F_i −= term (eq. 6–8); false if there is none (out of range, coincident).
+  bool pairTerm(const Vec2& xi, const Metric2& mi, int j, const DynamicsParams& p, Vec2& term) const;
+  bool feels(int i, int j) const;  ///< i takes the force of j (Segment nodes: own loop piece only)
+  Vec2 finishForce(int i, Vec2 f) const;  ///< Segment nodes keep the tangential part
   Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
+  /// computeForces() when most bubbles are awake: every pair term is computed once and added
+  /// to both bubbles (contiguous id blocks per thread), in the same order as netForce() adds
+  /// them, so the forces are bit-identical (and independent of the thread count).
+  double computeForcesPairwise(const AdjacencyLists& adj, const DynamicsParams& p);
+  std::vector<char> need_;  ///< computeForcesPairwise's scratch: bubble awake this step
   void structureChanged();  ///< after population edits: the next step clears its per-node flags in full
   std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
   std::vector<char> next_;     ///< updateActivity's scratch

@@ -207,14 +207,12 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
       if (std::find(rowsOf[i].begin(), rowsOf[i].end(), j) == rowsOf[i].end()) rowsOf[i].push_back(j);
   }
-  for (int i = 0; i < n; ++i) {
-    std::sort(rowsOf[i].begin(), rowsOf[i].end());
-    links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
-  }
+  for (int i = 0; i < n; ++i) links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
   links.ids.resize(links.offsets[n]);
   links.ccw.resize(links.offsets[n]);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
   for (int i = 0; i < n; ++i) {
+    std::sort(rowsOf[i].begin(), rowsOf[i].end());
     std::copy(rowsOf[i].begin(), rowsOf[i].end(), links.ids.begin() + links.offsets[i]);
     const int b = links.offsets[i], m = links.offsets[i + 1] - b;
     for (int k = 0; k < m; ++k) links.ccw[b + k] = k;

@@ -41,8 +41,7 @@ bool crossesHalfOpen(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b)
 /// of the x axis), φ = θ puts a row along e1 (the long size), φ = θ + π/2 along e2. A hexagonal
 /// lattice repeats every 60°, so φ is blended on the 6φ circle from 0 (isotropic, where θ is
 /// noise) to the eigenframe (ratio h1/h2 ≥ alignRatio); θ's own period π is a multiple of 60°.
-Eigen::Matrix2d latticeMap(const Metric2& m, LatticeOrientation orientation, double alignRatio) {
-  const MetricEigen e = m.eigen();
+Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation, double alignRatio) {
   double phi = 0;
   if (orientation != LatticeOrientation::Axes) {
     const double target = e.theta + (orientation == LatticeOrientation::ShortAxis ? std::numbers::pi / 2 : 0.0);
@@ -291,17 +290,17 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   for (int i = 0; i < nodes.size(); ++i) grid.insert(i, nodes.positions[i]);
 
   auto metricAt = [&](const Vec2& p) { return constant ? m0 : metric.at(p); };
-  auto acceptable = [&](const Vec2& c, const Metric2& m) {
-    if (!geo.inside(c)) return false;
-    const double h1 = m.eigen().h1;
-    bool free = true;
+  // A candidate c (metric m, largest size h1 of m) is kept if it is far enough from every
+  // node, inside, and far enough from the walls; the cheapest test first (most lattice
+  // candidates land on a node placed before).
+  auto acceptable = [&](const Vec2& c, const Metric2& m, double h1) {
     const double r2 = options.minNodeDistance * options.minNodeDistance;
-    grid.forEachIncremental(c, options.minNodeDistance * h1, [&](int q) {
-      if (free && m.squaredLength(nodes.positions[q] - c) < r2) free = false;
-    });
-    if (!free) return false;
+    const bool taken = grid.anyIncremental(c, options.minNodeDistance * h1,
+                                           [&](int q) { return m.squaredLength(nodes.positions[q] - c) < r2; });
+    if (taken || !geo.inside(c)) return false;
     return geo.metricDistanceToBoundary(c, m, options.minWallDistance * h1) >= options.minWallDistance;
   };
+  auto acceptableAlone = [&](const Vec2& c, const Metric2& m) { return acceptable(c, m, m.eigen().h1); };
   auto add = [&](const Vec2& c, const Metric2& m) {
     const int id = nodes.size();
     nodes.positions.push_back(c);
@@ -329,10 +328,11 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
       const int p = queue[head];
       const Vec2 x = nodes.positions[p];
       const Metric2 m = ms[p];
-      const Eigen::Matrix2d s = latticeMap(m, options.orientation, options.alignRatio);
+      const MetricEigen e = m.eigen();
+      const Eigen::Matrix2d s = latticeMap(e, options.orientation, options.alignRatio);
       for (const Vec2& d : dirs) {
         const Vec2 c = x + s * d;
-        if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));
+        if (acceptable(c, m, e.h1)) queue.push_back(add(c, metricAt(c)));
       }
     }
   };
@@ -343,12 +343,12 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
     if (constant) std::fill(sm.begin(), sm.end(), m0);
     else metric.evaluate(seeds, sm);
     for (std::size_t k = 0; k < seeds.size(); ++k)
-      if (acceptable(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
+      if (acceptableAlone(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
     grow();
   }
   for (const Vec2& probe : probes) {
     const Metric2 mp = metricAt(probe);
-    if (!acceptable(probe, mp)) continue;
+    if (!acceptableAlone(probe, mp)) continue;
     queue.assign(1, add(probe, mp));
     grow();
   }

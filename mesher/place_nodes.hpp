@@ -13,9 +13,10 @@
 ///
 /// Adjacency upkeep (§3.3): lists of radius 1.7 are exact for the force and eq. (9) (both end
 /// at w = 1.5) while no pair has closed in by more than 0.2, so each bubble's travel since its
-/// row was last computed is tracked; when one exceeds 0.1 the rows of the bubbles that
-/// travelled more than 0.05 are recomputed and mirrored (adjacency.hpp), a full refresh when
-/// they are more than a quarter of all; plus a full refresh every adjacencyRefresh steps.
+/// row was last computed is tracked; the rows of the bubbles that travelled more than 0.1 are
+/// recomputed after each step, at the reference positions (place_nodes.cpp), and mirrored
+/// (adjacency.hpp), a full refresh when they are more than a quarter of all; plus a full
+/// refresh every adjacencyRefresh steps.
 ///
 /// Speed (issue 7; README "Speed" has the figures and commands): the dynamics parameters
 /// c = 0.35, Δt = 0.45 (were 1.0, 0.3) and the active set (bubble_system.hpp) make a constant
