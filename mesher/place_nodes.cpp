@@ -171,6 +171,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   const int popEvery = 10;
   const int popUntil = std::max(popEvery, int(0.6 * options.maxSteps));
   int quietPasses = 0;
+  std::vector<int> passCounts;  // node count after each population pass
   double stallMark = 0;
   int stallMarkStep = -1;
   std::vector<double> shares;  // quality-plateau samples, one per 10 steps
@@ -266,6 +267,10 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       // Settled after two passes in a row that change at most 1 node in 10⁴ (large graded
       // runs otherwise keep editing 1–3 nodes per pass, each edit jolting its neighbourhood,
       // for hundreds of steps).
+      // Steering up ends once the count has not grown over steerWindow passes (population.hpp).
+      passCounts.push_back(sys.size());
+      const std::size_t w = std::size_t(std::max(1, pop.steerWindow));
+      if (passCounts.size() > w && passCounts.back() <= passCounts[passCounts.size() - 1 - w]) pop.steerUp = false;
       plateauMayStart = double(c.inserted + c.deleted) <= 2e-3 * sys.size();
       if (double(c.inserted + c.deleted) <= 1e-4 * sys.size()) {
         if (++quietPasses >= 2) populationSettled = true;

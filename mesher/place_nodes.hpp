@@ -5,7 +5,8 @@
 ///   (§3.4) ] with adjacency lists (§3.3) → stop rule → PlacementResult
 ///
 /// Schedule: population passes (population.hpp) every 10 steps until two passes in a row
-/// change at most 1 node in 10⁴ (or 60 % of maxSteps); the run stops when the residual has
+/// change at most 1 node in 10⁴ (or 60 % of maxSteps), steering the count up to 1.01 N* until
+/// it stops growing for 4 passes (population.hpp); the run stops when the residual has
 /// dropped below max(tolerance, relativeTolerance × initial) with every bubble awake, or when
 /// it has not halved for stallSteps steps (stats.stalled: graded metrics from a solver, where a
 /// few bubbles keep jolting), or at maxSteps. Boundary nodes are placed once (equal metric

@@ -46,11 +46,13 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       const Vec2 d = nodes.positions[j] - nodes.positions[i];
       nearest[i] = std::min(nearest[i], std::sqrt(0.5 * (ms[i].squaredLength(d) + ms[j].squaredLength(d))));
     }
-  long deficit = o.target >= 0 ? o.target - n : 0;
-  const bool steerUp = o.target >= 0 && deficit > o.steerTolerance * o.target;
-  const bool steerDown = o.target >= 0 && -deficit > o.steerTolerance * o.target;
+  const double aim = (1.0 + o.targetMargin) * double(o.target);
+  const long deficit = o.target >= 0 ? std::lround(aim) - n : 0;
+  const bool steerUp = o.target >= 0 && o.steerUp && deficit > 0;
+  const bool steerDown = o.target >= 0 && -deficit > o.steerTolerance * aim;
   const double insBelow = steerUp ? o.steerInsertBelow : o.insertBelow;
   const double delAbove = steerDown ? o.steerDeleteAbove : o.deleteAbove;
+  const double minGap = steerUp ? o.steerMinGap : o.minGap;
 
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -122,7 +124,7 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       double dmin2 = std::numeric_limits<double>::infinity();
       for (int j : adj.neighbours(i)) dmin2 = std::min(dmin2, mi.squaredLength(nodes.positions[j] - cand));
       const double dmin = std::sqrt(std::max(0.0, dmin2));  // = min of Metric2::length
-      if (dmin < o.minGap) continue;
+      if (dmin < minGap) continue;
       if (!geo.inside(cand) || geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) < 0.5) continue;
       candGap[slot] = dmin;
     }
@@ -140,13 +142,13 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       if (candGap[slot] < 0) continue;
       const Vec2 cand = candPos[slot];
       double dmin = candGap[slot];
-      addedGrid.forEachIncremental(cand, o.minGap * h1, [&](int a) { dmin = std::min(dmin, mi.length(added[a].first - cand)); });
+      addedGrid.forEachIncremental(cand, minGap * h1, [&](int a) { dmin = std::min(dmin, mi.length(added[a].first - cand)); });
       if (dmin > bestD) {
         bestD = dmin;
         best = cand;
       }
     }
-    if (bestD < o.minGap) continue;
+    if (bestD < minGap) continue;
     addedGrid.insert(int(added.size()), best);
     added.push_back({best, mi});
     locked[i] = 1;
