@@ -3,10 +3,18 @@
 #include "cli/command.hpp"
 #include "core/error.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <string>
+#include <thread>
 
 namespace ablmg::cli {
 
@@ -31,11 +39,64 @@ static void usage(std::ostream& os) {
   for (const auto& c : ablmg::cli::commands()) os << "  " << c.name << std::string(10 - std::min<size_t>(9, std::strlen(c.name)), ' ') << c.summary << "\n";
 }
 
+/// Threads of this process that are running now (OpenBLAS, pulled in by CHOLMOD, starts its
+/// own pool when it is loaded, before main()).
+static int ownRunningThreads() {
+  int running = 0;
+  std::error_code ec;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", ec)) {
+    std::ifstream stat(task.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto close = line.rfind(')');  // "pid (comm) S ...": the state follows the name
+    if (close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'R') ++running;
+  }
+  return std::max(running, 1);
+}
+
+/// Runnable tasks on the machine besides this process's: the smallest of three samples of
+/// /proc/stat's procs_running 1 ms apart, so that a passing task is not taken for load; 0 when
+/// /proc/stat cannot be read.
+static int otherRunnableTasks() {
+  int fewest = 1 << 30;
+  for (int sample = 0; sample < 3; ++sample) {
+    if (sample > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::ifstream stat("/proc/stat");
+    std::string key;
+    int running = -1;
+    while (stat >> key)
+      if (key == "procs_running") {
+        stat >> running;
+        break;
+      }
+    if (running < 1) return 0;
+    fewest = std::min(fewest, running - ownRunningThreads());
+  }
+  return std::max(fewest, 0);
+}
+
+/// OpenMP threads busy-wait at every barrier by default (libgomp spins ~3·10⁵ times before it
+/// sleeps), which is fastest on an idle machine but slow when other processes want the cores:
+/// a 8·10⁴-triangle remesh (bench_remesh.sh's ring, 2 cores) took 0.55 s idle, 1.5 s beside one
+/// busy process and up to 9 s beside a parallel build, against 0.60 / 0.8 s with passive waits.
+/// libgomp reads OMP_WAIT_POLICY once, before main(), so when other tasks are running and the
+/// user has set neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT, the process sets
+/// OMP_WAIT_POLICY=PASSIVE and runs itself again (once: the second run sees the variable).
+/// Results do not depend on it (every parallel region gives the same bits for any schedule).
+static void avoidBusyWaitingUnderLoad(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  if (otherRunnableTasks() == 0) return;
+  setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+  execv("/proc/self/exe", argv);  // returns only on failure: carry on with busy waits
+  unsetenv("OMP_WAIT_POLICY");
+}
+
 int main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? std::cerr : std::cout);
     return argc < 2 ? 2 : 0;
   }
+  avoidBusyWaitingUnderLoad(argv);
   const std::string name = argv[1];
   for (const auto& c : ablmg::cli::commands()) {
     if (name != c.name) continue;
