@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -42,8 +43,8 @@ static void usage(std::ostream& os) {
   for (const auto& c : ablmg::cli::commands()) os << "  " << c.name << std::string(10 - std::min<size_t>(9, std::strlen(c.name)), ' ') << c.summary << "\n";
 }
 
-/// Threads of this process that are running now (OpenBLAS, pulled in by CHOLMOD, starts its
-/// own pool when it is loaded, before main()).
+/// Threads of this process that are running now (in ablmg-full, OpenBLAS, pulled in by
+/// CHOLMOD, starts its own pool when it is loaded, before main()).
 static int ownRunningThreads() {
   int running = 0;
   std::error_code ec;
@@ -59,19 +60,18 @@ static int ownRunningThreads() {
 
 /// Runnable tasks on the machine besides this process's: the smallest of three samples of
 /// /proc/stat's procs_running 1 ms apart, so that a passing task is not taken for load; 0 when
-/// /proc/stat cannot be read.
+/// /proc/stat cannot be read. A sample that shows none ends it (the smallest is then 0), so
+/// an idle machine costs one read and no waiting.
 static int otherRunnableTasks() {
   int fewest = 1 << 30;
-  for (int sample = 0; sample < 3; ++sample) {
+  for (int sample = 0; sample < 3 && fewest > 0; ++sample) {
     if (sample > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
     std::ifstream stat("/proc/stat");
-    std::string key;
-    int running = -1;
-    while (stat >> key)
-      if (key == "procs_running") {
-        stat >> running;
-        break;
-      }
+    std::ostringstream text;  // one read; the interrupt line before procs_running has ~10³ words
+    text << stat.rdbuf();
+    const std::string s = text.str();
+    const auto at = s.find("\nprocs_running ");
+    const int running = at == std::string::npos ? -1 : std::atoi(s.c_str() + at + 15);
     if (running < 1) return 0;
     fewest = std::min(fewest, running - ownRunningThreads());
   }
