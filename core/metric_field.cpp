@@ -96,14 +96,18 @@ bool AnalyticMetricField::isConstant() const { return impl_->constant; }
 
 // ---------------------------------------------------------------- background mesh
 
-BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics)
+BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check)
     : mesh_(std::move(mesh)), metrics_(std::move(metrics)) {
   ABLMG_REQUIRE(int(metrics_.size()) == mesh_.numVertices(),
                 "background metric: " << metrics_.size() << " tensors for a mesh of " << mesh_.numVertices() << " vertices");
-  const MeshValidation v = mesh_.validate();
-  ABLMG_REQUIRE(v.ok, "background metric: the background mesh is not valid: " << v.firstProblem);
-  logs_.reserve(metrics_.size());
-  for (const auto& m : metrics_) logs_.push_back(m.logm());
+  if (check == MeshCheck::Validate) {
+    const MeshValidation v = mesh_.validate();
+    ABLMG_REQUIRE(v.ok, "background metric: the background mesh is not valid: " << v.firstProblem);
+  }
+  logs_.resize(metrics_.size());
+  const long n = long(metrics_.size());
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long i = 0; i < n; ++i) logs_[std::size_t(i)] = metrics_[std::size_t(i)].logm();
   locator_ = std::make_unique<PointLocator>(mesh_);
 }
 

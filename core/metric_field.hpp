@@ -67,8 +67,12 @@ private:
 
 class BackgroundMetricField final : public MetricField {
 public:
+  /// Whether the constructor runs Mesh2::validate() on the mesh (the default), or the caller
+  /// has just done so on this very mesh and it passed (the remesh command validates its input
+  /// as it reads it: the check is not repeated).
+  enum class MeshCheck { Validate, AlreadyValidated };
   /// mesh must be valid; metrics.size() == mesh.numVertices(). Copies both.
-  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics);
+  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check = MeshCheck::Validate);
   Metric2 at(const Vec2& p) const override;
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
   /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint.
