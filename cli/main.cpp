@@ -108,8 +108,9 @@ static void forwardToFullProgram(int argc, char** argv) {
   const std::string full = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / ABLMG_FULL_PROGRAM;
   argv[0] = const_cast<char*>(full.c_str());
   execv(full.c_str(), argv);
-  std::cerr << "ablmg: cannot run " << full << " (" << std::strerror(errno) << "), which has the command '" << (argc >= 2 ? argv[1] : "")
-            << "'\n";
+  std::cerr << "ablmg: cannot run " << full << " (" << std::strerror(errno) << ")";
+  if (argc >= 2) std::cerr << ", which has the command '" << argv[1] << "'";
+  std::cerr << "\n";
   std::exit(127);
 }
 #endif
