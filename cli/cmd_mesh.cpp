@@ -6,6 +6,7 @@
 // exits 1; outputs are written only after the mesh exists, so a failed run writes nothing.
 #include "cli/command.hpp"
 #include "cli/config.hpp"
+#include "cli/mesh_output.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "mesher/mesher.hpp"

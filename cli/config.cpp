@@ -2,8 +2,6 @@
 
 #include "core/error.hpp"
 #include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
 #include "io/poly.hpp"
 
 #include <climits>
@@ -365,29 +363,6 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
   c.domain = parseDomain(j["domain"], top / "domain", baseDir);
   c.metric = parseMetric(j["metric"], top / "metric", baseDir, c.metricDescription);
   return c;
-}
-
-static std::string extensionOf(const std::string& path) { return std::filesystem::path(path).extension().string(); }
-
-void checkOutputPath(const std::string& path, const std::string& what) {
-  const std::string ext = extensionOf(path);
-  ABLMG_REQUIRE(ext == ".mesh" || ext == ".vtu" || ext == ".png",
-                what << ": output '" << path << "' must end in .mesh, .vtu or .png");
-}
-
-void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh, const std::vector<Metric2>& metric) {
-  checkOutputPath(path, path);
-  const std::string ext = extensionOf(path);
-  if (ext == ".mesh") {
-    io::writeMesh(path, mesh);
-    if (metric.size() == mesh.vertices.size()) io::writeSol(std::filesystem::path(path).replace_extension(".sol").string(), metric);
-  } else if (ext == ".vtu") {
-    io::writeVtu(path, mesh, metric.size() == mesh.vertices.size() ? io::metricFields(metric) : std::vector<io::Field>{});
-  } else {
-    const bool hasMetric = metric.size() == mesh.vertices.size();
-    io::drawBubbles(path, domain, hasMetric ? std::span<const Vec2>(mesh.vertices) : std::span<const Vec2>(), hasMetric ? std::span<const Metric2>(metric) : std::span<const Metric2>(),
-                    mesh.triangles.empty() ? nullptr : &mesh);
-  }
 }
 
 Config loadConfig(const std::string& path) {

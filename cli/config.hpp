@@ -1,5 +1,6 @@
 #pragma once
-/// JSON configuration of `ablmg mesh` → Domain, MetricField, mesher::MeshOptions, outputs.
+/// JSON configuration of `ablmg mesh` → Domain, MetricField, mesher::MeshOptions, outputs
+/// (written by cli/mesh_output.hpp).
 /// Schema (full text with examples: docs/config.md):
 ///
 ///   {
@@ -58,16 +59,5 @@ Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const s
 void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where);
 /// Every option with its value (defaults included), same layout as applyMeshOptions reads.
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options);
-
-/// Writes one output of a meshing run, the format chosen by the extension of `path`:
-///  .mesh → medit mesh, plus the metric as a tensor .sol beside it (same name, .sol);
-///  .vtu  → VTK with point fields metric (m11 m12 m22), h1, h2, angle;
-///  .png  → bubbles (paper §3: the unit-metric ellipse of each vertex scaled by 1/2) over the
-///          mesh edges and the domain boundary.
-/// A mesh without triangles (bubbles only) is written as points. Atomic; throws InputError for
-/// an unknown extension (before anything is written if called through checkOutputPath first).
-void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh, const std::vector<Metric2>& metric);
-/// Throws InputError unless `path` ends in .mesh, .vtu or .png (`what` names the flag or key).
-void checkOutputPath(const std::string& path, const std::string& what);
 
 } // namespace ablmg::cli

@@ -4,6 +4,7 @@
 
 #include <muParser.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace ablmg {
@@ -16,6 +17,13 @@ void MetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out)
 void MetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const {
   (void)hints;
   evaluate(points, out);
+}
+
+void MetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const {
+  ABLMG_ASSERT(points.size() == out.size(), "");
+  std::vector<Metric2> ms(points.size());
+  evaluate(points, ms);
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = std::sqrt(ms[i].det());
 }
 
 // ---------------------------------------------------------------- analytic (muparser)
@@ -96,14 +104,18 @@ bool AnalyticMetricField::isConstant() const { return impl_->constant; }
 
 // ---------------------------------------------------------------- background mesh
 
-BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics)
+BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check)
     : mesh_(std::move(mesh)), metrics_(std::move(metrics)) {
   ABLMG_REQUIRE(int(metrics_.size()) == mesh_.numVertices(),
                 "background metric: " << metrics_.size() << " tensors for a mesh of " << mesh_.numVertices() << " vertices");
-  const MeshValidation v = mesh_.validate();
-  ABLMG_REQUIRE(v.ok, "background metric: the background mesh is not valid: " << v.firstProblem);
-  logs_.reserve(metrics_.size());
-  for (const auto& m : metrics_) logs_.push_back(m.logm());
+  if (check == MeshCheck::Validate) {
+    const MeshValidation v = mesh_.validate();
+    ABLMG_REQUIRE(v.ok, "background metric: the background mesh is not valid: " << v.firstProblem);
+  }
+  logs_.resize(metrics_.size());
+  const long n = long(metrics_.size());
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long i = 0; i < n; ++i) logs_[std::size_t(i)] = metrics_[std::size_t(i)].logm();
   locator_ = std::make_unique<PointLocator>(mesh_);
 }
 
@@ -129,6 +141,24 @@ void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Met
     const auto loc = locator_->locate(points[std::size_t(i)], h >= 0 && h < mesh_.numTriangles() ? h : -1);
     hints[std::size_t(i)] = loc.triangle;
     out[std::size_t(i)] = interpolate(loc);
+  }
+}
+
+void BackgroundMetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const {
+  ABLMG_ASSERT(points.size() == out.size(), "");
+  constexpr long kChunk = 512;
+  const long n = long(points.size()), chunks = (n + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(static) if (n >= 2048)
+  for (long c = 0; c < chunks; ++c) {
+    int hint = -1;
+    for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+      const auto loc = locator_->locate(points[std::size_t(i)], hint);
+      hint = loc.triangle;
+      const auto& tr = mesh_.triangles[loc.triangle];
+      double halfTrace = 0;
+      for (int k = 0; k < 3; ++k) halfTrace += loc.bary[k] * 0.5 * (logs_[tr[k]].m11() + logs_[tr[k]].m22());
+      out[std::size_t(i)] = std::exp(halfTrace);
+    }
   }
 }
 

@@ -35,6 +35,10 @@ public:
   /// out: where it is now). Fields without a mesh ignore the hints. Used by the bubble
   /// dynamics, whose bubbles move a little between evaluations.
   virtual void evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const;
+  /// √det M at many points (out.size() == points.size()): the density of the metric's area,
+  /// ∫ √det M dA, which sizes the node count. The default evaluates M; a background field
+  /// needs no tensor (see there).
+  virtual void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const;
   /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
   virtual bool isConstant() const { return false; }
 };
@@ -67,12 +71,21 @@ private:
 
 class BackgroundMetricField final : public MetricField {
 public:
+  /// Whether the constructor runs Mesh2::validate() on the mesh (the default), or the caller
+  /// has just done so on this very mesh and it passed (the remesh command validates its input
+  /// as it reads it: the check is not repeated).
+  enum class MeshCheck { Validate, AlreadyValidated };
   /// mesh must be valid; metrics.size() == mesh.numVertices(). Copies both.
-  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics);
+  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check = MeshCheck::Validate);
   Metric2 at(const Vec2& p) const override;
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
   /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint.
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const override;
+  /// det exp(L) = exp(tr L) and tr L is linear in the barycentric weights, so √det M at a point
+  /// is exp(½ Σ wₖ tr log Mₖ): no tensor exponential. Points are located in fixed chunks of
+  /// consecutive points, each from the previous point's triangle (neighbours on a raster row
+  /// share triangles), the chunks in parallel (OpenMP; the same values for any thread count).
+  void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const override;
   const Mesh2& mesh() const { return mesh_; }
   const std::vector<Metric2>& metrics() const { return metrics_; }
 

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/predicates.hpp"
+#include "mesher/parallel_threshold.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -358,16 +359,23 @@ double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricF
   const auto [lo, hi] = geo.boundingBox();
   if (metric.isConstant()) return domain.area() * std::sqrt(metric.at(0.5 * (lo + hi)).det());
   const Vec2 d = (hi - lo) / g;
+  const auto cellCentre = [&](int x, int y) { return Vec2(lo + Vec2((x + 0.5) * d.x(), (y + 0.5) * d.y())); };
+  // Inside tests by rows in parallel (geo is read-only), then the inside points in raster order.
+  std::vector<char> in(std::size_t(g) * std::size_t(g));
+#pragma omp parallel for schedule(static) if (g * g >= kMinParallelItems)
+  for (int y = 0; y < g; ++y)
+    for (int x = 0; x < g; ++x) in[std::size_t(y) * std::size_t(g) + std::size_t(x)] = geo.inside(cellCentre(x, y));
   std::vector<Vec2> pts;
   for (int y = 0; y < g; ++y)
-    for (int x = 0; x < g; ++x) {
-      const Vec2 p = lo + Vec2((x + 0.5) * d.x(), (y + 0.5) * d.y());
-      if (geo.inside(p)) pts.push_back(p);
-    }
-  std::vector<Metric2> ms(pts.size());
-  metric.evaluate(pts, ms);
+    for (int x = 0; x < g; ++x)
+      if (in[std::size_t(y) * std::size_t(g) + std::size_t(x)]) pts.push_back(cellCentre(x, y));
+  // 6·10⁴ points at g = 256 (10 % of a 9·10³-triangle remesh when they were located and
+  // interpolated one by one): a background field takes √det M without the tensor, in parallel
+  // (MetricField::sqrtDeterminants). The sum runs in raster order.
+  std::vector<double> density(pts.size());
+  metric.sqrtDeterminants(pts, density);
   double sum = 0;
-  for (const auto& m : ms) sum += std::sqrt(m.det());
+  for (const double s : density) sum += s;
   return sum * d.x() * d.y();
 }
 

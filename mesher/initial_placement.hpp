@@ -102,7 +102,9 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
                         std::span<const Vec2> seeds = {});
 
 /// ∫Ω √det M dA (the domain's area in metric space) by midpoint quadrature on a g×g grid
-/// over the bounding box (exact area × √det M for a constant field).
+/// over the bounding box (exact area × √det M for a constant field). OpenMP (inside tests,
+/// and MetricField::sqrtDeterminants, which a background field runs in parallel); the same
+/// value for any thread count.
 double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricField& metric, int g = 256);
 
 /// N* = (2/√3) A_M + Nb/2 + 1 − holes: a triangulation with Nb boundary nodes and T unit

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace ablmg;
@@ -100,6 +101,28 @@ TEST(BackgroundMetricField, ReproducesConstantAndInterpolatesLogEuclidean) {
   BackgroundMetricField graded(m, ms);
   EXPECT_NEAR(graded.at({0.42, 0.5}).eigen().h1, std::exp(-0.84), 1e-12);
   EXPECT_THROW(BackgroundMetricField(m, std::vector<Metric2>(3, c)), InputError);
+}
+
+TEST(BackgroundMetricField, SqrtDeterminantsMatchTheInterpolatedTensor) {
+  // Anisotropic tensors turning across the mesh, at 5000 points (several parallel chunks, in
+  // raster order and shuffled): exp(½ tr L) against √det of the interpolated tensor.
+  const Mesh2 m = grid(12, 5);
+  std::vector<Metric2> ms;
+  for (const auto& v : m.vertices) ms.push_back(Metric2::fromSizes(0.2 * std::exp(v.x()), 0.01 + 0.05 * v.y(), 3.0 * v.x() * v.y()));
+  const BackgroundMetricField field(m, ms);
+  std::vector<Vec2> pts;
+  for (int j = 0; j < 50; ++j)
+    for (int i = 0; i < 100; ++i) pts.push_back({(i + 0.5) / 100, (j + 0.5) / 50});
+  std::shuffle(pts.begin() + 2500, pts.end(), std::mt19937_64(7));
+  std::vector<double> s(pts.size());
+  field.sqrtDeterminants(pts, s);
+  for (std::size_t k = 0; k < pts.size(); ++k) EXPECT_NEAR(s[k], std::sqrt(field.at(pts[k]).det()), 1e-12 * s[k]) << k;
+  // The default (MetricField) is √det of evaluate().
+  AnalyticMetricField f(AnalyticMetricField::Form::Sizes, "0.1+x", "0.05", "y");
+  std::vector<double> a(3);
+  const std::vector<Vec2> q = {{0.1, 0.2}, {0.5, 0.5}, {0.9, 0.3}};
+  f.sqrtDeterminants(q, a);
+  for (std::size_t k = 0; k < q.size(); ++k) EXPECT_DOUBLE_EQ(a[k], std::sqrt(f.at(q[k]).det()));
 }
 
 TEST(AnalyticMetricField, EvaluatesAndReportsErrors) {
