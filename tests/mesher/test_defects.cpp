@@ -1,0 +1,84 @@
+#include "mesher/adjacency.hpp"
+#include "mesher/defects.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+using namespace ablmg;
+using namespace ablmg::mesher;
+
+namespace {
+
+/// Unit hexagonal lattice of (2k+1)² nodes around the origin; the outer two rings are
+/// Segment-kind (no topology of their own), the rest Interior.
+struct Patch {
+  std::vector<Vec2> x;
+  std::vector<NodeKind> kinds;
+  std::vector<Metric2> m;
+};
+Patch hexPatch(int k, const Metric2& metric) {
+  Patch p;
+  for (int r = -k; r <= k; ++r)
+    for (int c = -k; c <= k; ++c) {
+      p.x.push_back(Vec2(c + 0.5 * r, r * std::sqrt(3.0) / 2));
+      p.kinds.push_back(std::max(std::abs(r), std::abs(c)) >= k - 1 ? NodeKind::Segment : NodeKind::Interior);
+      p.m.push_back(metric);
+    }
+  return p;
+}
+int at(int k, int r, int c) { return (r + k) * (2 * k + 1) + (c + k); }
+
+LocalTopology topologyOf(const Patch& p) {
+  return localTopology(p.x, p.m, p.kinds, buildAdjacency(p.x, p.m, 1.7));
+}
+
+} // namespace
+
+TEST(LocalTopology, HexagonalLatticeHasDegreeSixEverywhere) {
+  const Patch p = hexPatch(6, Metric2::isotropic(1.0));
+  const LocalTopology t = topologyOf(p);
+  const DefectCounts c = countDefects(t);
+  EXPECT_EQ(c.interior, 81);  // 9 × 9 interior nodes
+  EXPECT_EQ(c.total(), 0);
+  const int centre = at(6, 0, 0);
+  ASSERT_EQ(t.degree[centre], 6);
+  for (int j : t.ring(centre)) EXPECT_NEAR((p.x[j] - p.x[centre]).norm(), 1.0, 1e-12);
+}
+
+TEST(LocalTopology, PushedEdgeMakesAQuadrupoleOfTwoFivesAndTwoSevens) {
+  // Edge i–j (horizontal) with opposite nodes c (above) and d (below): pushing i, j apart and
+  // pulling c, d together flips the edge to c–d: i, j drop to degree 5, c, d rise to 7.
+  Patch p = hexPatch(6, Metric2::isotropic(1.0));
+  const int i = at(6, 0, 0), j = at(6, 0, 1), c = at(6, 1, 0), d = at(6, -1, 1);
+  p.x[i].x() -= 0.2;
+  p.x[j].x() += 0.2;
+  p.x[c].y() -= 0.25;
+  p.x[d].y() += 0.25;
+  const LocalTopology t = topologyOf(p);
+  EXPECT_EQ(t.degree[i], 5);
+  EXPECT_EQ(t.degree[j], 5);
+  EXPECT_EQ(t.degree[c], 7);
+  EXPECT_EQ(t.degree[d], 7);
+  EXPECT_EQ(countDefects(t).total(), 4);
+  const std::vector<char> near = defectNeighbourhood(t, 1);
+  EXPECT_TRUE(near[at(6, 0, -1)]);   // neighbour of i
+  EXPECT_FALSE(near[at(6, 0, -3)]);  // three rows away
+}
+
+TEST(LocalTopology, AnisotropicLatticeIsReadInItsMetric) {
+  // The affine image of the unit lattice under M^{-1/2} (h1 = 0.4 along 30°, h2 = 0.1) is
+  // hexagonal in M: every interior node has degree 6.
+  const Metric2 m = Metric2::fromSizes(0.4, 0.1, std::numbers::pi / 6);
+  Patch p = hexPatch(6, Metric2::isotropic(1.0));
+  const MetricEigen e = m.eigen();
+  const double cs = std::cos(e.theta), sn = std::sin(e.theta);
+  for (auto& x : p.x) {
+    const Vec2 u(e.h1 * (cs * x.x() + sn * x.y()), e.h2 * (-sn * x.x() + cs * x.y()));
+    x = Vec2(cs * u.x() - sn * u.y(), sn * u.x() + cs * u.y());
+  }
+  std::fill(p.m.begin(), p.m.end(), m);
+  EXPECT_EQ(countDefects(topologyOf(p)).total(), 0);
+}
