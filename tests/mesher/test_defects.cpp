@@ -1,5 +1,6 @@
 #include "mesher/adjacency.hpp"
 #include "mesher/defects.hpp"
+#include "mesher/place_nodes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -81,4 +82,37 @@ TEST(LocalTopology, AnisotropicLatticeIsReadInItsMetric) {
   }
   std::fill(p.m.begin(), p.m.end(), m);
   EXPECT_EQ(countDefects(topologyOf(p)).total(), 0);
+}
+
+// The ring disk of §4.3 (issue 9): the annealing passes remove a good part of the defects
+// the packing is left with (the mesh's interior nodes of degree ≠ 6: 596 → 434), for any
+// thread count alike; a constant metric (boundary dislocations only, below defectMinShare)
+// is left untouched, bit for bit. Kicks that did nothing would fail the 0.85 bound.
+TEST(PlaceNodes, DefectAnnealingRemovesTrappedDefects) {
+  const std::string h1 = "0.15*abs(sqrt(x^2+y^2)-6)+0.2";
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, h1, "0.5*(" + h1 + ")", "0");
+  const Domain disk = Domain::disk({0, 0}, 10);
+  auto defects = [](const PlacementResult& r) {
+    return countDefects(localTopology(r.nodes.positions, r.metrics, r.nodes.kinds, r.adjacency)).total();
+  };
+  PlacementOptions off;
+  off.defectPasses = 0;
+  const PlacementResult a = placeNodes(disk, m, off);
+  PlacementOptions on;
+  on.threads = 1;
+  const PlacementResult b = placeNodes(disk, m, on);
+  EXPECT_EQ(b.stats.defectPasses, on.defectPasses);
+  EXPECT_LT(double(defects(b)), 0.85 * double(defects(a)));
+  EXPECT_FALSE(b.stats.hitStepCap);
+  on.threads = 2;
+  const PlacementResult c = placeNodes(disk, m, on);
+  ASSERT_EQ(b.nodes.size(), c.nodes.size());
+  for (int i = 0; i < b.nodes.size(); ++i) ASSERT_EQ(b.nodes.positions[i], c.nodes.positions[i]) << i;
+
+  AnalyticMetricField constant(AnalyticMetricField::Form::Sizes, "0.5", "0.2", "pi/4");
+  const PlacementResult k = placeNodes(disk, constant);
+  EXPECT_EQ(k.stats.defectPasses, 0);
+  const PlacementResult k0 = placeNodes(disk, constant, off);
+  ASSERT_EQ(k.nodes.size(), k0.nodes.size());
+  for (int i = 0; i < k.nodes.size(); ++i) ASSERT_EQ(k.nodes.positions[i], k0.nodes.positions[i]) << i;
 }
