@@ -63,7 +63,9 @@ nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
           {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled}, {"qualityPlateau", s.qualityPlateau},           {"activeBubbleSteps", s.activeBubbleSteps},
           {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},
           {"secondsInitial", s.secondsInitial}, {"secondsDynamics", s.secondsDynamics},
-          {"secondsAdjacency", s.secondsAdjacency}, {"secondsPopulation", s.secondsPopulation}};
+          {"secondsAdjacency", s.secondsAdjacency}, {"secondsPopulation", s.secondsPopulation},
+          {"defectPasses", s.defectPasses}, {"defectsFirst", s.defectsFirst}, {"defectsLast", s.defectsLast},
+          {"secondsDefects", s.secondsDefects}};
 }
 
 int runMesh(const std::vector<std::string>& args) {

@@ -509,6 +509,18 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   clear_.resize(n, 0.0);
 }
 
+bool BubbleSystem::displace(int i, const Vec2& x) {
+  if (nodes_.kinds[i] != NodeKind::Interior || !geo_->inside(x)) return false;
+  nodes_.positions[i] = x;
+  vel_[i] = Vec2::Zero();
+  if (std::size_t(i) < clear_.size()) clear_[i] = 0;  // unknown: the next move tests the boundary
+  if (std::size_t(i) < movedSinceRefresh_.size()) movedSinceRefresh_[i] = 1;
+  if (std::size_t(i) < disp_.size() && std::size_t(i) < refPos_.size())
+    disp_[i] = std::sqrt(metrics_[i].squaredLength(x - refPos_[i]));
+  kick(i);
+  return true;
+}
+
 void BubbleSystem::kick(int i) {
   structureChanged();
   active_.resize(std::size_t(nodes_.size()), 1);

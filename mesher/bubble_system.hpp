@@ -89,6 +89,9 @@ public:
   /// are awake and kicked; the caller kicks the neighbours of removed ones.
   std::vector<int> remove(const std::vector<char>& kill);
   void addInterior(const Vec2& x, const Metric2& m);
+  /// Moves Interior bubble i to x (defect moves, dislocations.hpp) if x is strictly inside:
+  /// velocity zeroed, bubble kicked. Returns false (nothing changed) otherwise.
+  bool displace(int i, const Vec2& x);
 
   /// The arc length of boundary node i along its loop (wrapped to [0, L)).
   double arcLength(int i) const;
