@@ -119,6 +119,7 @@ long shakeNodes(BubbleSystem& sys, const DomainGeometry& geo, std::span<const ch
     const Vec2 target = sys.nodes().positions[i] + (amplitude / std::sqrt(mi.squaredLength(u))) * u;
     const double a = mi.m11(), b = mi.m12(), c = mi.m22();
     const double hMax = 1.0 / std::sqrt(std::max(0.5 * (a + c) - std::sqrt(0.25 * (a - c) * (a - c) + b * b), 1e-300));
+    if (geo.metricDistanceToBoundary(sys.nodes().positions[i], mi, 2 * hMax) < 1.5) continue;  // first rows stay
     if (!geo.inside(target) || geo.metricDistanceToBoundary(target, mi, hMax) < 0.5) continue;
     moved += sys.displace(i, target);
   }
