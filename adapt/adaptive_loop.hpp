@@ -58,11 +58,16 @@ struct AdaptOptions {
   /// blend 0.25): remeshes 4.3 s instead of 6.4–6.8 s, errors 0–6 % higher (L2 0.64–0.71×,
   /// H1 0.83–0.89× FreeFem's instead of 0.62–0.71×, 0.81–0.89×); plateauGain 0.002: 5.2–5.8 s
   /// with the errors of the full run. The quality post-pass keeps q min ≥ 0.64 either way.
+  /// No defect annealing (mesher/defects.hpp) in the loop: it only runs when the population
+  /// settles before the plateau stop, so some cycles got it and others not, and where it ran
+  /// it did not help the FE error (lshape at 8k vertices: H1 0.0163 with it, 0.0152 without;
+  /// session 6); it exists for the edge-length statistics of `ablmg mesh`.
   mesher::MeshOptions mesh = [] {
     mesher::MeshOptions m;
     m.placement.lattice.orientation = mesher::LatticeOrientation::ShortAxis;
     m.placement.plateauSteps = 10;
     m.placement.plateauGain = 0.01;
+    m.placement.defectPasses = 0;  // see above
     return m;
   }();
   fem::SolveOptions solve;
