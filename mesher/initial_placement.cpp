@@ -356,7 +356,8 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
 }
 
 double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricField& metric, int g) {
-  const auto [lo, hi] = geo.boundingBox();
+  const auto box = geo.boundingBox();  // named, not a structured binding: the lambda below
+  const Vec2 lo = box.first, hi = box.second;  // captures it, which clang 14 rejects
   if (metric.isConstant()) return domain.area() * std::sqrt(metric.at(0.5 * (lo + hi)).det());
   const Vec2 d = (hi - lo) / g;
   const auto cellCentre = [&](int x, int y) { return Vec2(lo + Vec2((x + 0.5) * d.x(), (y + 0.5) * d.y())); };
