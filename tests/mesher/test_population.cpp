@@ -19,6 +19,18 @@ void hexPatch(double h, int n, std::vector<Vec2>& x, std::vector<Metric2>& m, co
     }
 }
 
+/// A bubble system of free interior nodes at `x`, metrics from `field`.
+BubbleSystem interiorSystem(const DomainGeometry& geo, const std::vector<Vec2>& x, const MetricField& field) {
+  NodeSet nodes;
+  nodes.positions = x;
+  nodes.kinds.assign(x.size(), NodeKind::Interior);
+  nodes.loops.assign(x.size(), -1);
+  nodes.arc.assign(x.size(), -1.0);
+  BubbleSystem sys(geo, nodes, std::vector<double>(x.size(), -1.0));
+  sys.updateMetrics(field);
+  return sys;
+}
+
 } // namespace
 
 TEST(Population, OverlapRatioIsSixInsideALatticeAndTwoOnALine) {
@@ -57,13 +69,7 @@ TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
   const Vec2 extra = (x[3 * 15 + 3] + x[4 * 15 + 3] + x[3 * 15 + 4]) / 3;
   x.push_back(extra);
   m.push_back(Metric2::isotropic(0.1));
-  NodeSet nodes;
-  nodes.positions = x;
-  nodes.kinds.assign(x.size(), NodeKind::Interior);
-  nodes.loops.assign(x.size(), -1);
-  nodes.arc.assign(x.size(), -1.0);
-  BubbleSystem sys(geo, nodes, std::vector<double>(x.size(), -1.0));
-  sys.updateMetrics(field);
+  BubbleSystem sys = interiorSystem(geo, x, field);
   const int before = sys.size();
   PopulationOptions o;  // no steering
   const PopulationChange c = adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
@@ -96,13 +102,7 @@ TEST(Population, SteeringFillsASmallHoleOnlyBelowTheTarget) {
   for (auto& p : x)
     if ((p - hole).norm() < 0.11) p = hole + 0.85 * (p - hole);
   auto insertedNearHole = [&](const PopulationOptions& o) {
-    NodeSet nodes;
-    nodes.positions = x;
-    nodes.kinds.assign(x.size(), NodeKind::Interior);
-    nodes.loops.assign(x.size(), -1);
-    nodes.arc.assign(x.size(), -1.0);
-    BubbleSystem sys(geo, nodes, std::vector<double>(x.size(), -1.0));
-    sys.updateMetrics(field);
+    BubbleSystem sys = interiorSystem(geo, x, field);
     const PopulationChange c = adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
     int near = 0;  // the rim of the patch has real gaps: count only insertions near the hole
     for (int i = c.firstNew; i < sys.size(); ++i) near += (sys.nodes().positions[i] - hole).norm() < 0.15;
