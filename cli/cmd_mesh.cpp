@@ -59,6 +59,7 @@ void noteCrowdedCorners(const Domain& domain, const MetricField& field) {
 
 nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
   return {{"predictedNodes", s.predictedNodes}, {"initialNodes", s.initialNodes}, {"finalNodes", s.finalNodes},
+          {"nearestInRange", s.nearestInRange},
           {"inserted", s.inserted},             {"deleted", s.deleted},           {"steps", s.steps},
           {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled}, {"qualityPlateau", s.qualityPlateau},           {"activeBubbleSteps", s.activeBubbleSteps},
           {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},

@@ -1,16 +1,20 @@
-// ablmg stats MESH.mesh [metric] [--e E] [--json OUT.json]: quality report of a medit mesh
+// ablmg stats MESH.mesh [metric] [--e E] [--json [OUT.json]]: quality report of a medit mesh
 // (mesher/quality.hpp; paper §4.2 Table 1 and §6 Table 2).
 //
 //   metric (at most one; default: the identity, i.e. Euclidean lengths and shape quality):
 //     --sol METRIC.sol            per-vertex tensors (type 3) or sizes (type 1), 2D only
+//     --metric CONFIG.json        the "metric" of an `ablmg mesh` config, or a bare metric
+//                                 object (expressions or background mesh + .sol), 2D only
 //     --metric-expr H1 H2 THETA   muparser expressions in x, y (sizes and angle, eq. 2), 2D only
 //     --h H                       isotropic size H (2D: M = I/H²; 3D surfaces: M3 = I/H², eq. 17)
 //   --e E         bin width of the edge-deviation histogram (default 0.05, as in the paper)
-//   --json FILE   also write the report as JSON
+//   --json FILE   also write the report as JSON (FILE must end in .json)
+//   --json        print the report as JSON on stdout instead of text
 //
 // A file whose vertices all have z = 0 is a 2D mesh (Mesh2, validated with Mesh2::validate);
 // otherwise a 3D surface mesh (checked with checkManifold; elements measured by Lee's α).
 #include "cli/command.hpp"
+#include "cli/config.hpp"
 #include "core/error.hpp"
 #include "core/metric_field.hpp"
 #include "io/atomic_file.hpp"
@@ -31,13 +35,21 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kUsage =
-    "usage: ablmg stats MESH.mesh [--sol METRIC.sol | --metric-expr H1 H2 THETA | --h H] [--e E] [--json OUT.json]\n"
+    "usage: ablmg stats MESH.mesh [--sol METRIC.sol | --metric CONFIG.json | --metric-expr H1 H2 THETA | --h H]\n"
+    "                   [--e E] [--json [OUT.json]]\n"
     "  Edge metric lengths and deviation eps = |l-1| (paper eq. 13, Table 1), element quality\n"
     "  q = 4*sqrt(3)*A_M/sum(l^2) in 2D or Lee's alpha (eqs. 19-20) on 3D surfaces (Table 2),\n"
-    "  and mesh validity. Without a metric: the identity (Euclidean lengths).\n";
+    "  and mesh validity. Without a metric: the identity (Euclidean lengths).\n"
+    "  --sol FILE          per-vertex sizes (type 1) or tensors (type 3, m11 m12 m22)\n"
+    "  --metric CONFIG     the metric of an `ablmg mesh` config (or a bare metric object)\n"
+    "  --metric-expr H1 H2 THETA   sizes and angle as expressions in x, y\n"
+    "  --h H               isotropic size (3D surfaces: the only choice)\n"
+    "  --e E               bin width of the edge-deviation histogram (default 0.05)\n"
+    "  --json OUT.json     also write the report as JSON; --json alone: JSON on stdout, no text\n";
 
 struct Args {
-  std::string mesh, sol, json;
+  std::string mesh, sol, json, metricConfig;
+  bool jsonToStdout = false;
   std::vector<std::string> expr;  ///< h1, h2, theta
   std::optional<double> h;
   double e = 0.05;
@@ -65,7 +77,12 @@ Args parse(const std::vector<std::string>& args) {
       return args[i + k];
     };
     if (f == "--sol") a.sol = value(1), ++i;
-    else if (f == "--json") a.json = value(1), ++i;
+    else if (f == "--json") {
+      // A value only if it names a .json file: `--json` alone (or before another flag or the
+      // mesh) prints the report as JSON on stdout.
+      if (i + 1 < args.size() && args[i + 1].ends_with(".json") && !args[i + 1].starts_with("-")) a.json = args[++i];
+      else a.jsonToStdout = true;
+    } else if (f == "--metric") a.metricConfig = value(1), ++i;
     else if (f == "--h") a.h = positiveNumber(f, value(1)), ++i;
     else if (f == "--e") a.e = positiveNumber(f, value(1)), ++i;
     else if (f == "--metric-expr") a.expr = {value(1), value(2), value(3)}, i += 3;
@@ -76,8 +93,9 @@ Args parse(const std::vector<std::string>& args) {
     }
   }
   ABLMG_REQUIRE(!a.mesh.empty(), "no mesh given (usage: ablmg stats MESH.mesh [options])");
-  ABLMG_REQUIRE(int(!a.sol.empty()) + int(!a.expr.empty()) + int(a.h.has_value()) <= 1,
-                "give at most one of --sol, --metric-expr, --h");
+  ABLMG_REQUIRE(int(!a.sol.empty()) + int(!a.metricConfig.empty()) + int(!a.expr.empty()) + int(a.h.has_value()) <= 1,
+                "give at most one of --sol, --metric, --metric-expr, --h");
+  ABLMG_REQUIRE(a.json.empty() || !a.jsonToStdout, "--json given twice (once with a file, once without)");
   return a;
 }
 
@@ -96,8 +114,8 @@ int runStats(const std::vector<std::string>& args) {
 
   // 2. The metric, then the figures.
   if (surface) {
-    ABLMG_REQUIRE(a.sol.empty() && a.expr.empty(),
-                  a.mesh << ": a 3D surface mesh takes only --h (isotropic M3); --sol/--metric-expr are 2D");
+    ABLMG_REQUIRE(a.sol.empty() && a.expr.empty() && a.metricConfig.empty(),
+                  a.mesh << ": a 3D surface mesh takes only --h (isotropic M3); --sol/--metric/--metric-expr are 2D");
     const double h = a.h.value_or(1.0);
     report["metric"] = a.h ? "isotropic M3 = I/h^2, h = " + std::to_string(h) : "identity (Euclidean lengths)";
     mesher::SurfaceMesh s;
@@ -110,6 +128,11 @@ int runStats(const std::vector<std::string>& args) {
     if (!a.sol.empty()) {
       metrics = io::readSol(a.sol, mesh.numVertices());
       report["metric"] = "per-vertex tensors from " + a.sol;
+    } else if (!a.metricConfig.empty()) {
+      std::string description;
+      const auto field = loadMetricConfig(a.metricConfig, description);
+      field->evaluate(mesh.vertices, metrics);
+      report["metric"] = description + " (from " + a.metricConfig + ")";
     } else if (!a.expr.empty()) {
       const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, a.expr[0], a.expr[1], a.expr[2], "--metric-expr");
       field.evaluate(mesh.vertices, metrics);
@@ -125,6 +148,10 @@ int runStats(const std::vector<std::string>& args) {
   report["quality"] = mesher::toJson(q);
 
   // 3. Print, and write the JSON report if asked.
+  if (a.jsonToStdout) {
+    std::cout << report.dump(2) << "\n";
+    return 0;
+  }
   std::cout << "ablmg stats: " << a.mesh << ", metric: " << report["metric"].get<std::string>() << "\n"
             << mesher::toText(q);
   if (!a.json.empty()) {

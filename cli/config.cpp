@@ -339,16 +339,39 @@ nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
           {"improve", bindingsToJson(options.improve, improveBindings())}};
 }
 
-Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir) {
-  json j;
+namespace {
+/// JSON text → object; a syntax error reads "NAME: invalid JSON: <parser's message>".
+json parseJsonText(const std::string& text, const std::string& name) {
   try {
-    j = json::parse(text);
+    return json::parse(text);
   } catch (const json::exception& e) {
     std::string msg = e.what();
     const auto p = msg.find("] ");
     if (p != std::string::npos) msg = msg.substr(p + 2);
     ABLMG_REQUIRE(false, name << ": invalid JSON: " << msg);
   }
+  return {};
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream is(path, std::ios::binary);
+  ABLMG_REQUIRE(is, path << ": cannot open for reading");
+  std::ostringstream ss;
+  ss << is.rdbuf();
+  return ss.str();
+}
+} // namespace
+
+std::unique_ptr<MetricField> loadMetricConfig(const std::string& path, std::string& description) {
+  const json j = parseJsonText(readText(path), path);
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  requireObject(j, Where{path, ""});
+  if (j.contains("metric")) return parseMetric(j["metric"], Where{path, "metric"}, baseDir, description);
+  return parseMetric(j, Where{path, ""}, baseDir, description);
+}
+
+Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir) {
+  const json j = parseJsonText(text, name);
   const Where top{name, ""};
   requireObject(j, top);
   checkKeys(j, {"domain", "metric", "options", "outputs"}, top);
@@ -370,11 +393,7 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
 }
 
 Config loadConfig(const std::string& path) {
-  std::ifstream is(path, std::ios::binary);
-  ABLMG_REQUIRE(is, path << ": cannot open for reading");
-  std::ostringstream ss;
-  ss << is.rdbuf();
-  return parseConfig(ss.str(), path, std::filesystem::path(path).parent_path().string());
+  return parseConfig(readText(path), path, std::filesystem::path(path).parent_path().string());
 }
 
 } // namespace ablmg::cli

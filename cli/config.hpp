@@ -50,6 +50,12 @@ Config loadConfig(const std::string& path);
 /// From text; `name` is used in messages, `baseDir` resolves relative paths.
 Config parseConfig(const std::string& text, const std::string& name, const std::string& baseDir);
 
+/// The metric of a JSON file (`ablmg stats --metric`): either a whole `ablmg mesh` config,
+/// whose "metric" object is used (its other keys are not read), or a bare metric object in any
+/// of the forms above. Relative mesh/sol paths are relative to the file; `description` gets a
+/// one-line summary. Messages read "FILE: metric.<key>: ..." (or "FILE: <key>: ...").
+std::unique_ptr<MetricField> loadMetricConfig(const std::string& path, std::string& description);
+
 /// The "domain" object of a config (any of the forms above), for other commands' configs;
 /// messages read "FILE: domain.<key>: ...".
 Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const std::string& baseDir);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace ablmg::mesher {
@@ -372,7 +373,26 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   result.metrics = sys.metrics();
   result.nodes = sys.nodes();
   st.finalNodes = result.nodes.size();
+  st.nearestInRange = nearestNeighbourShare(result);
   return result;
+}
+
+double nearestNeighbourShare(const PlacementResult& r, double lo, double hi) {
+  long interior = 0, inRange = 0;
+  const int n = r.nodes.size();
+#pragma omp parallel for schedule(static) reduction(+ : interior, inRange) if (n >= kMinParallelItems)
+  for (int i = 0; i < n; ++i) {
+    if (r.nodes.kinds[i] != NodeKind::Interior) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (int j : r.adjacency.neighbours(i)) {
+      const Vec2 d = r.nodes.positions[j] - r.nodes.positions[i];
+      best = std::min(best, r.metrics[i].squaredLength(d) + r.metrics[j].squaredLength(d));
+    }
+    const double l = std::sqrt(0.5 * best);
+    ++interior;
+    inRange += l >= lo && l <= hi;
+  }
+  return interior == 0 ? 1.0 : double(inRange) / double(interior);
 }
 
 } // namespace ablmg::mesher

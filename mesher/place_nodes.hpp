@@ -127,6 +127,7 @@ struct PlacementStats {
   bool hitStepCap = false;
   bool stalled = false;        ///< stopped by the stall rule (PlacementOptions::stallSteps)
   bool qualityPlateau = false; ///< stopped by the quality-plateau rule (PlacementOptions::plateauSteps)
+  double nearestInRange = 0;  ///< nearestNeighbourShare(result): interior nodes with a nearest neighbour at 0.85–1.15
   double initialResidual = 0, finalResidual = 0;  ///< largest net bubble force in metric units (= c × terminal velocity)
   int defectPasses = 0;                ///< defect annealing passes done (PlacementOptions::defectPasses)
   long defectsFirst = -1, defectsLast = -1;  ///< defect nodes (degree ≠ 6) at the first and the last pass; −1 if none
@@ -143,5 +144,10 @@ struct PlacementResult {
 };
 
 PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {});
+
+/// Issue 3's packing figure: the share of interior nodes whose nearest neighbour in the
+/// adjacency lists is at a metric distance (eq. 3, averaged tensor) in [lo, hi]; a unit
+/// hexagonal packing has every node at 1. 1 when there is no interior node. O(Σ list sizes).
+double nearestNeighbourShare(const PlacementResult& result, double lo = 0.85, double hi = 1.15);
 
 } // namespace ablmg::mesher

@@ -31,3 +31,29 @@ ablmg_stats_failure(stats_sol_mismatch "mismatch.sol:4: 3 solution values but th
                     ${_data}/square.mesh --sol ${_data}/mismatch.sol --json ${_dir}/stats_sol_mismatch.json)
 ablmg_stats_failure(stats_bad_flag "unknown option '--foo'" ${_data}/square.mesh --foo --json ${_dir}/stats_bad_flag.json)
 ablmg_stats_failure(stats_surface_sol "3D surface mesh takes only --h" ${_dir}/tetra.mesh --sol ${_data}/square.sol)
+
+# --json alone: the report as JSON on stdout; --metric: the metric of a mesh config.
+add_test(NAME cli.stats_json_stdout COMMAND ablmg stats ${_data}/square.mesh --json)
+set_tests_properties(cli.stats_json_stdout PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "^{\n  \"e\": 0.05,\n  \"mesh\": .*\"min\": 0.866" FAIL_REGULAR_EXPRESSION "ablmg stats:")
+file(WRITE ${_dir}/square_h.json "{\"domain\": {\"rectangle\": [0, 0, 1, 1]}, \"metric\": {\"h\": \"0.5\"}}")
+# square.mesh's edges: four sides of length 1 (2 in the metric) and four half-diagonals (√2).
+add_test(NAME cli.stats_metric_config COMMAND ablmg stats ${_data}/square.mesh --metric ${_dir}/square_h.json)
+set_tests_properties(cli.stats_metric_config PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "isotropic h=0.5 \\(from .*square_h.json\\).*edge length l: +min 1.414 +mean 1.707 +max 2")
+file(WRITE ${_dir}/bad_metric.json "{\"h1\": 3}")
+ablmg_stats_failure(stats_bad_metric_config "bad_metric.json: h1: expected string, got number"
+                    ${_data}/square.mesh --metric ${_dir}/bad_metric.json --json ${_dir}/stats_bad_metric_config.json)
+ablmg_stats_failure(stats_two_metrics "give at most one of --sol, --metric, --metric-expr, --h"
+                    ${_data}/square.mesh --h 1 --metric ${_dir}/square_h.json --json ${_dir}/stats_two_metrics.json)
+
+# Issue 9: the paper's disks given as a mesh + metric pair keep the issue's figures.
+foreach(case_within constant:0.95 line:0.90 ring:0.85)
+  string(REPLACE ":" ";" cw ${case_within})
+  list(GET cw 0 case)
+  list(GET cw 1 within)
+  add_test(NAME cli.remesh_pair_${case}
+           COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DCONFIG=${PROJECT_SOURCE_DIR}/examples/configs/paper_disk_${case}.json
+                   -DOUT=${_dir}/pair_${case} -DWITHIN10=${within} -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_pair_figures.cmake.in)
+  set_tests_properties(cli.remesh_pair_${case} PROPERTIES LABELS cli)
+endforeach()

@@ -217,6 +217,7 @@ TEST_P(PaperDisk, CountQualityAndConvergence) {
   const auto& s = r.stats;
   EXPECT_NEAR(double(s.finalNodes) / s.predictedNodes, 1.0, 0.05);
   EXPECT_GE(fractionIn(nearestInterior(r), 0.85, 1.15), 0.95);
+  EXPECT_DOUBLE_EQ(nearestNeighbourShare(r), fractionIn(nearestInterior(r), 0.85, 1.15));  // what `ablmg mesh --report` says
   EXPECT_LE(s.finalResidual, 0.01 * s.initialResidual);
   EXPECT_FALSE(s.hitStepCap);
   EXPECT_TRUE(r.adjacency.isSymmetric());
