@@ -10,4 +10,11 @@ namespace ablmg::adapt {
 /// (InputError otherwise, naming the offending index and value).
 double logLogSlope(std::span<const double> n, std::span<const double> e, int lastK = 0);
 
+/// Where an error curve (n[i], e[i]), in cycle order, first reaches `target`: the N at which
+/// the piecewise-linear interpolation in log–log coordinates first falls to ≤ target (the
+/// adaptive run's cost for, e.g., the finest uniform mesh's error). n[0] if e[0] ≤ target
+/// already (then an upper bound); NaN if no point reaches it. Points must be positive and
+/// finite (InputError naming the index otherwise).
+double verticesToReach(std::span<const double> n, std::span<const double> e, double target);
+
 } // namespace ablmg::adapt

@@ -2,9 +2,11 @@
 
 #include "core/error.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace ablmg::adapt {
 namespace {
@@ -15,6 +17,48 @@ constexpr int kMinParallelVertices = 2048;
 } // namespace
 
 namespace detail {
+namespace {
+/// The patch fit in the patch's principal frame, each axis scaled by the patch's extent along
+/// it: (s, t) = T (x − x_v), T = diag(1/e₁, 1/e₂) Qᵀ with Q the eigenvectors of Σ d dᵀ. The
+/// least-squares quadratic is the same in any affine frame (exactness for quadratics holds);
+/// only the conditioning changes. Coefficients back in x: ∇ = Tᵀ ∇_st, H = Tᵀ H_st T.
+/// Nothing (std::nullopt) if the scaled system still fails the |R_55| ≥ 1e-6 |R_00| test.
+std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, const std::vector<int>& patch, const Vec2& xv,
+                                                          const Eigen::VectorXd& b) {
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (int w : patch) {
+    const Vec2 d = mesh.vertices[w] - xv;
+    cov += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+  const Eigen::Matrix2d Q = eig.eigenvectors();
+  double e1 = 0, e2 = 0;
+  for (int w : patch) {
+    const Vec2 p = Q.transpose() * (mesh.vertices[w] - xv);
+    e1 = std::max(e1, std::abs(p.x()));
+    e2 = std::max(e2, std::abs(p.y()));
+  }
+  if (!(e1 > 0 && e2 > 0)) return std::nullopt;  // collinear: only growth can help
+  const Eigen::Matrix2d T = Eigen::Vector2d(1 / e1, 1 / e2).asDiagonal() * Q.transpose();
+  const int m = int(patch.size());
+  Eigen::MatrixXd A(m, 6);
+  for (int i = 0; i < m; ++i) {
+    const Vec2 q = T * (mesh.vertices[patch[i]] - xv);
+    A.row(i) << 1.0, q.x(), q.y(), q.x() * q.x(), q.x() * q.y(), q.y() * q.y();
+  }
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  const auto R = qr.matrixR();
+  if (!(std::abs(R(5, 5)) >= 1e-6 * std::abs(R(0, 0)))) return std::nullopt;
+  const Eigen::Matrix<double, 6, 1> c = qr.solve(b);
+  const Vec2 grad = T.transpose() * Vec2(c[1], c[2]);
+  Eigen::Matrix2d Hst;
+  Hst << 2 * c[3], c[4], c[4], 2 * c[5];
+  const Eigen::Matrix2d H = T.transpose() * Hst * T;
+  Eigen::Matrix<double, 6, 1> a;
+  a << c[0], grad.x(), grad.y(), 0.5 * H(0, 0), 0.5 * (H(0, 1) + H(1, 0)), 0.5 * H(1, 1);
+  return a;
+}
+} // namespace
 
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where) {
   ABLMG_REQUIRE(long(u.size()) == long(mesh.numVertices()),
@@ -97,6 +141,10 @@ Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGra
         a[5] /= r * r;
         return a;
       }
+      // A thin patch (aspect ratio beyond ~10³: the t² column is ~1e-6 of the s² one) fails the
+      // test above although its points determine a quadratic; growing it ring by ring would take
+      // thousands of rings along a layer. Refit in the patch's principal frame instead.
+      if (const auto a = anisotropicFit(mesh, patch, xv, b)) return *a;
     }
     ABLMG_REQUIRE(grew, "recoverHessians: the connected piece of vertex " << v << " has only " << m << " vertices (< 6)");
   }

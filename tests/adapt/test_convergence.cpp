@@ -25,3 +25,18 @@ TEST(Convergence, RejectsDegenerateInput) {
   std::vector<double> n2{10, 20}, e2{0, 1};
   EXPECT_THROW(logLogSlope(n2, e2), ablmg::InputError);
 }
+
+TEST(Convergence, VerticesToReachInterpolatesLogLog) {
+  // e = 100 / N on the first segment: e = 2 at N = 50 exactly.
+  std::vector<double> n{10, 100, 1000}, e{10, 1, 0.5};
+  EXPECT_NEAR(verticesToReach(n, e, 2.0), 50.0, 1e-9);
+  EXPECT_NEAR(verticesToReach(n, e, 1.0), 100.0, 1e-9);
+  EXPECT_NEAR(verticesToReach(n, e, 20.0), 10.0, 0);            // already reached at the first point
+  EXPECT_TRUE(std::isnan(verticesToReach(n, e, 0.1)));          // never reached
+  // A curve that rises again: the first crossing counts.
+  std::vector<double> n2{10, 100, 1000, 10000}, e2{10, 1, 5, 0.1};
+  EXPECT_NEAR(verticesToReach(n2, e2, 1.0), 100.0, 1e-9);
+  std::vector<double> bad{1, -1};
+  EXPECT_THROW(verticesToReach(n, bad, 1.0), ablmg::InputError);
+  EXPECT_THROW(verticesToReach(n, e, 0.0), ablmg::InputError);
+}
