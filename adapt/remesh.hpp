@@ -6,7 +6,8 @@
 ///   Mesh2 + one Metric2 per vertex ─ clamp sizes to [hmin, hmax] ─ limitGradation (hgrad)
 ///     ─ domainFromMeshBoundary ─ BackgroundMetricField ─ mesher::meshDomain ─▶ new Mesh2
 ///
-/// Usage, in a solver's loop (the whole loop: examples/07_solver_in_the_loop.cpp):
+/// Usage, in a solver's loop (Remesh.TheHeadersSolverLoopRuns in tests/adapt/test_remesh.cpp
+/// runs it; examples/07_solver_in_the_loop.cpp is a loop with a real solver and a known domain):
 ///
 ///   #include "adapt/remesh.hpp"
 ///   ablmg::Mesh2 mesh = myMesh();           // CCW triangles; boundaryEdges carry your refs
@@ -17,15 +18,15 @@
 ///     const std::vector<double> u = mySolve(mesh);
 ///     std::vector<ablmg::Metric2> metric = myMetric(mesh, u);  // e.g. adapt::adaptMetric
 ///     ablmg::adapt::RemeshResult r = ablmg::adapt::remesh(std::move(mesh), std::move(metric), options);
-///     mesh = std::move(r.mesh);             // valid, covers the same polygon, refs kept
+///     mesh = std::move(r.mesh);             // valid; boundary refs kept
 ///   }
 ///
 /// Errors are exceptions (ablmg::InputError for bad input, ablmg::Error if the mesher fails);
 /// nothing is printed or written. Same input and options (seed) ⇒ bit-identical output.
+#include "adapt/gradation.hpp"
 #include "core/mesh2.hpp"
 #include "core/metric2.hpp"
 #include "core/metric_field.hpp"
-#include "adapt/gradation.hpp"
 #include "mesher/mesher.hpp"
 
 #include <limits>
@@ -80,7 +81,10 @@ struct RemeshResult {
 ///  metric  one SPD Metric2 per vertex of `mesh` (coordinates' length unit); interpolated
 ///          log-Euclidean between vertices. Sizes are first clamped to [hmin, hmax] (the
 ///          directions kept), then graded if hgrad > 1.
-/// Returns a valid mesh of the same polygon (area equal to the input's up to round-off).
+/// Returns a valid mesh whose boundary nodes lie on the input's boundary polyline, with its
+/// corners (ref changes, turns > 30°) kept and its other vertices not necessarily: the area is
+/// the input's up to round-off where the boundary is straight between corners (a polygon),
+/// slightly less where it samples a curve (chords).
 /// Throws InputError for options out of range (validate), metric.size() ≠ the vertex count
 /// (naming both), an invalid mesh ("<name>: invalid mesh: ..."), a boundary that is not
 /// closed loops ("<name>: ..."), a non-SPD metric; ablmg::Error if the mesher fails.

@@ -229,3 +229,37 @@ TEST(Remesh, KnownDomainOverloadKeepsTheGivenDomain) {
   EXPECT_TRUE(r.mesh.validate(1.0, 1e-9).ok);
   EXPECT_EQ(long(r.metric.size()), long(r.mesh.numVertices()));
 }
+
+TEST(Remesh, TheHeadersSolverLoopRuns) {
+  // The usage sample of adapt/remesh.hpp, with a stand-in solver (u = x) and a metric that
+  // halves the size every cycle.
+  int cycle = 0;
+  const auto myMesh = [] { return inputMesh(); };
+  const auto mySolve = [](const Mesh2& m) {
+    std::vector<double> u;
+    for (const Vec2& p : m.vertices) u.push_back(p.x());
+    return u;
+  };
+  const auto myMetric = [&cycle](const Mesh2& m, const std::vector<double>& u) {
+    EXPECT_EQ(long(u.size()), long(m.numVertices()));
+    return isotropic(m, 0.4 / std::pow(2.0, cycle));
+  };
+  ablmg::Mesh2 mesh = myMesh();
+  ablmg::adapt::RemeshOptions options;
+  options.hmin = 1e-4;
+  options.hmax = 0.1;
+  std::vector<long> vertices;
+  for (cycle = 0; cycle < 5; ++cycle) {
+    const std::vector<double> u = mySolve(mesh);
+    std::vector<ablmg::Metric2> metric = myMetric(mesh, u);
+    ablmg::adapt::RemeshResult r = ablmg::adapt::remesh(std::move(mesh), std::move(metric), options);
+    mesh = std::move(r.mesh);
+    EXPECT_TRUE(mesh.validate(15.0, 1e-9).ok) << "cycle " << cycle;
+    vertices.push_back(mesh.numVertices());
+  }
+  // Sizes 0.4, 0.2, 0.1 are 0.1 after the clamp (cycles 0–2), then 0.05, 0.025: ×4 vertices per halving.
+  EXPECT_NEAR(double(vertices[1]) / vertices[0], 1.0, 0.05);
+  EXPECT_NEAR(double(vertices[2]) / vertices[1], 1.0, 0.05);
+  EXPECT_NEAR(double(vertices[3]) / vertices[2], 4.0, 0.6);
+  EXPECT_NEAR(double(vertices[4]) / vertices[3], 4.0, 0.6);
+}
