@@ -35,12 +35,6 @@ mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, cons
   return mesher::meshDomain(domain, ConstantMetricField(Metric2::isotropic(h)), options);
 }
 
-mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
-                          const mesher::MeshOptions& options) {
-  const BackgroundMetricField field(mesh, std::move(metric));
-  return mesher::meshDomain(domain, field, options);
-}
-
 AdaptProblem adaptProblem(const fem::TestProblem& problem) {
   return {problem.domain, problem.poisson(), problem.exact()};
 }

@@ -15,7 +15,7 @@
 ///  - runAdaptiveLoop(problem, options, onCycle): everything above; onCycle sees each cycle's
 ///    mesh, solution, errors and metrics (for output: the library never prints or writes files).
 ///  - the steps on their own, for a solver with its own u_h: uniformMesh(), adaptMetric()
-///    (mesh + u_h → per-vertex metric), remesh() (mesh + metric → new mesh).
+///    (mesh + u_h → per-vertex metric), remesh() (mesh + metric → new mesh, adapt/remesh.hpp).
 ///
 /// hmax = ∞ in options.metric means a quarter of the current mesh's bounding-box diagonal (so
 /// that regions where u is linear still get a few elements across the domain).
@@ -28,6 +28,7 @@
 #include "adapt/hessian_recovery.hpp"
 #include "adapt/interpolation_error.hpp"
 #include "adapt/metric_from_hessian.hpp"
+#include "adapt/remesh.hpp"
 #include "fem/error_norms.hpp"
 #include "fem/solve.hpp"
 #include "fem/test_problems.hpp"
@@ -158,9 +159,5 @@ std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, d
 std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
                                          const AdaptOptions& options, double* tMetric = nullptr,
                                          GradationStats* gradation = nullptr);
-
-/// meshDomain(domain, BackgroundMetricField(mesh, metric), options).
-mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
-                          const mesher::MeshOptions& options = {});
 
 } // namespace ablmg::adapt

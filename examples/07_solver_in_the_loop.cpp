@@ -119,7 +119,9 @@ int main(int argc, char** argv) {
 
       // Step 5: the metric for twice the vertices, and the new mesh of the same domain in it
       // (the metric is interpolated from the current mesh; the result is a valid mesh or an
-      // exception).
+      // exception). A solver that has a mesh but no Domain calls adapt::remesh(mesh, metric,
+      // RemeshOptions) instead (adapt/remesh.hpp): the domain is the mesh's boundary, and the
+      // call clamps to [hmin, hmax] and grades as `ablmg remesh` does.
       const double next = o.n0 * std::pow(2.0, k + 1);
       std::vector<Metric2> metric = adapt::metricFromRecovered(current.mesh, hessians, next, options);
       current = adapt::remesh(domain, current.mesh, std::move(metric), options.mesh);

@@ -1,0 +1,87 @@
+#include "adapt/remesh.hpp"
+
+#include "core/domain_from_mesh.hpp"
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace ablmg::adapt {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Clamps the sizes h1, h2 of each metric to [hmin, hmax] (directions kept; hmin = 0 means the
+/// smallest positive double). Returns how many metrics changed; the others are untouched.
+long clampSizes(std::vector<Metric2>& metrics, double hmin, double hmax) {
+  long clamped = 0;
+  const double lo = std::max(hmin, 1e-300);
+  for (auto& m : metrics) {
+    const auto e = m.eigen();
+    const double h1 = std::clamp(e.h1, lo, hmax), h2 = std::clamp(e.h2, lo, hmax);
+    if (h1 != e.h1 || h2 != e.h2) {
+      m = Metric2::fromSizes(h1, h2, e.theta);
+      ++clamped;
+    }
+  }
+  return clamped;
+}
+} // namespace
+
+void validate(const RemeshOptions& o) {
+  ABLMG_REQUIRE(std::isfinite(o.hmin) && o.hmin >= 0, "remesh options: hmin must be finite and >= 0, got " << o.hmin);
+  ABLMG_REQUIRE(o.hmax > o.hmin, "remesh options: hmax must be > hmin, got hmax " << o.hmax << ", hmin " << o.hmin);
+  ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
+                "remesh options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
+}
+
+RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions& options) {
+  validate(options);
+  const std::string& name = options.name;
+  ABLMG_REQUIRE(long(metric.size()) == long(mesh.numVertices()),
+                name << ": " << metric.size() << " metrics for " << mesh.numVertices() << " vertices (one per vertex needed)");
+  for (std::size_t v = 0; v < metric.size(); ++v)
+    ABLMG_REQUIRE(metric[v].isSpd(), name << ": metric[" << v << "] (" << metric[v].m11() << ", " << metric[v].m12()
+                                          << ", " << metric[v].m22() << ") is not positive definite");
+  RemeshResult r;
+  auto t0 = Clock::now();
+  if (options.inputCheck == BackgroundMetricField::MeshCheck::Validate) {
+    const MeshValidation v = mesh.validate();
+    ABLMG_REQUIRE(v.ok, name << ": invalid mesh: " << v.firstProblem);
+    r.secondsValidate = since(t0);
+  }
+  // 1. Sizes clamped to [hmin, hmax].
+  t0 = Clock::now();
+  r.clampedMetrics = clampSizes(metric, options.hmin, options.hmax);
+  r.secondsClamp = since(t0);
+  // 2. Gradation: sizes grow by at most ≈ hgrad per unit metric length along the input edges.
+  t0 = Clock::now();
+  if (options.hgrad > 1) r.gradation = limitGradation(mesh, metric, {.hgrad = options.hgrad});
+  r.secondsGradation = since(t0);
+  // 3. The domain from the input's boundary.
+  t0 = Clock::now();
+  const Domain domain = domainFromMeshBoundary(mesh, name);
+  r.secondsDomain = since(t0);
+  // 4. The input mesh and metric as the background field (validated above or by the caller;
+  // the clamp, gradation and domain do not change the mesh).
+  t0 = Clock::now();
+  const BackgroundMetricField field(std::move(mesh), std::move(metric), BackgroundMetricField::MeshCheck::AlreadyValidated);
+  r.secondsBackgroundField = since(t0);
+  // 5. The new mesh.
+  t0 = Clock::now();
+  mesher::MeshResult m = mesher::meshDomain(domain, field, options.mesh);
+  r.secondsMeshing = since(t0);
+  r.mesh = std::move(m.mesh);
+  r.metric = std::move(m.metric);
+  r.stats = m.stats;
+  return r;
+}
+
+mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
+                          const mesher::MeshOptions& options) {
+  const BackgroundMetricField field(mesh, std::move(metric));
+  return mesher::meshDomain(domain, field, options);
+}
+
+} // namespace ablmg::adapt

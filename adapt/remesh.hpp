@@ -1,0 +1,99 @@
+#pragma once
+/// Remeshing to a per-vertex metric: the call a solver makes between two solves (what
+/// libmmg2d's MMG2D_mmg2dlib is to MMG). `ablmg remesh` is this call between reading and
+/// writing files.
+///
+///   Mesh2 + one Metric2 per vertex ─ clamp sizes to [hmin, hmax] ─ limitGradation (hgrad)
+///     ─ domainFromMeshBoundary ─ BackgroundMetricField ─ mesher::meshDomain ─▶ new Mesh2
+///
+/// Usage, in a solver's loop (Remesh.TheHeadersSolverLoopRuns in tests/adapt/test_remesh.cpp
+/// runs it; examples/07_solver_in_the_loop.cpp is a loop with a real solver and a known domain):
+///
+///   #include "adapt/remesh.hpp"
+///   ablmg::Mesh2 mesh = myMesh();           // CCW triangles; boundaryEdges carry your refs
+///   ablmg::adapt::RemeshOptions options;
+///   options.hmin = 1e-4;                    // sizes in the mesh's length unit
+///   options.hmax = 0.1;                     // hgrad stays 1.3 (MMG's default)
+///   for (int cycle = 0; cycle < 5; ++cycle) {
+///     const std::vector<double> u = mySolve(mesh);
+///     std::vector<ablmg::Metric2> metric = myMetric(mesh, u);  // e.g. adapt::adaptMetric
+///     ablmg::adapt::RemeshResult r = ablmg::adapt::remesh(std::move(mesh), std::move(metric), options);
+///     mesh = std::move(r.mesh);             // valid; boundary refs kept
+///   }
+///
+/// Errors are exceptions (ablmg::InputError for bad input, ablmg::Error if the mesher fails);
+/// nothing is printed or written. Same input and options (seed) ⇒ bit-identical output.
+#include "adapt/gradation.hpp"
+#include "core/mesh2.hpp"
+#include "core/metric2.hpp"
+#include "core/metric_field.hpp"
+#include "mesher/mesher.hpp"
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace ablmg::adapt {
+
+struct RemeshOptions {
+  double hmin = 0;                                         ///< [0, hmax): smallest size h1, h2
+  double hmax = std::numeric_limits<double>::infinity();  ///< (hmin, ∞]: largest size h1, h2
+  /// β > 1: size gradation on the input mesh after the clamp (gradation.hpp, MMG's -hgrad);
+  /// ≤ 0 (e.g. MMG's −1): none. Values in (0, 1] are refused.
+  double hgrad = 1.3;
+  /// Validate (default): remesh() runs Mesh2::validate on the input. AlreadyValidated: the
+  /// caller has just validated this very mesh (as `ablmg remesh` does when reading it).
+  BackgroundMetricField::MeshCheck inputCheck = BackgroundMetricField::MeshCheck::Validate;
+  std::string name = "mesh";  ///< names the input in error messages (the CLI gives the file)
+  /// The mesher's options. The seed is mesh.placement.seed, the lattice orientation
+  /// mesh.placement.lattice.orientation (Axes; ShortAxis suits Hessian metrics, see
+  /// AdaptOptions::mesh). Placement stops on the quality plateau (plateauSteps 10,
+  /// plateauGain 0.01, mesher/place_nodes.hpp): graded metrics rarely let the residual settle.
+  mesher::MeshOptions mesh = [] {
+    mesher::MeshOptions m;
+    m.placement.plateauSteps = 10;
+    m.placement.plateauGain = 0.01;
+    return m;
+  }();
+};
+
+/// Throws InputError "remesh options: <field> ..." naming the field and value.
+void validate(const RemeshOptions& options);
+
+/// The fields of mesher::MeshResult (so code written for meshDomain's result reads this one)
+/// and what remesh() did before meshing. Times are wall seconds (steady clock).
+struct RemeshResult {
+  Mesh2 mesh;                  ///< valid; boundary edges carry the input's boundary refs
+  std::vector<Metric2> metric; ///< the metric (clamped, graded, interpolated) at each new vertex
+  mesher::MeshStats stats;     ///< placement, connection, quality post-pass, validation
+  long clampedMetrics = 0;     ///< input metrics changed by the [hmin, hmax] clamp
+  GradationStats gradation;    ///< all zero when hgrad ≤ 0
+  double secondsValidate = 0;  ///< the input check (0 with AlreadyValidated)
+  double secondsClamp = 0, secondsGradation = 0, secondsDomain = 0, secondsBackgroundField = 0;
+  double secondsMeshing = 0;   ///< mesher::meshDomain (placement + connection + post-pass)
+};
+
+/// Remeshes the domain covered by `mesh` so that edges have unit length in `metric`.
+///  mesh    valid (Mesh2::validate; see RemeshOptions::inputCheck); its boundary loops and
+///          their refs become the domain (domainFromMeshBoundary: one outer loop, holes,
+///          corners kept, boundary nodes placed anew). Taken by value and kept as the
+///          background mesh: pass std::move(mesh) to save a copy.
+///  metric  one SPD Metric2 per vertex of `mesh` (coordinates' length unit); interpolated
+///          log-Euclidean between vertices. Sizes are first clamped to [hmin, hmax] (the
+///          directions kept), then graded if hgrad > 1.
+/// Returns a valid mesh whose boundary nodes lie on the input's boundary polyline, with its
+/// corners (ref changes, turns > 30°) kept and its other vertices not necessarily: the area is
+/// the input's up to round-off where the boundary is straight between corners (a polygon),
+/// slightly less where it samples a curve (chords).
+/// Throws InputError for options out of range (validate), metric.size() ≠ the vertex count
+/// (naming both), an invalid mesh ("<name>: invalid mesh: ..."), a boundary that is not
+/// closed loops ("<name>: ..."), a non-SPD metric; ablmg::Error if the mesher fails.
+RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions& options = {});
+
+/// meshDomain(domain, BackgroundMetricField(mesh, metric), options): remeshing a domain the
+/// caller knows exactly (e.g. a curved boundary, which the input mesh only approximates).
+/// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop.
+mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
+                          const mesher::MeshOptions& options = {});
+
+} // namespace ablmg::adapt
