@@ -172,7 +172,7 @@ int runRemesh(const std::vector<std::string>& args) {
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, " << r.mesh.numTriangles()
               << " triangles in " << r.secondsMeshing << " s (" << r.clampedMetrics << " metrics clamped, " << r.gradation.corrections
-              << " graded) -> " << out << ", " << outSol << "\n";
+              << " graded, " << r.stats.connect.repairedTriangles << " repaired triangles) -> " << out << ", " << outSol << "\n";
   return 0;
 }
 
