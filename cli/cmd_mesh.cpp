@@ -7,6 +7,7 @@
 #include "cli/command.hpp"
 #include "cli/config.hpp"
 #include "cli/mesh_output.hpp"
+#include "cli/stats_json.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "mesher/mesher.hpp"
@@ -55,18 +56,6 @@ void noteCrowdedCorners(const Domain& domain, const MetricField& field) {
                 << " segments shorter than half the metric size; all its points are fixed vertices. If the loop"
                    " samples a curve, set \"smooth\": true in the domain (docs/config.md)\n";
   }
-}
-
-nlohmann::json placementStatsJson(const mesher::PlacementStats& s) {
-  return {{"predictedNodes", s.predictedNodes}, {"initialNodes", s.initialNodes}, {"finalNodes", s.finalNodes},
-          {"nearestInRange", s.nearestInRange},
-          {"inserted", s.inserted},             {"deleted", s.deleted},           {"steps", s.steps},
-          {"hitStepCap", s.hitStepCap},         {"stalled", s.stalled}, {"qualityPlateau", s.qualityPlateau},           {"activeBubbleSteps", s.activeBubbleSteps},
-          {"initialResidual", s.initialResidual}, {"finalResidual", s.finalResidual},
-          {"secondsInitial", s.secondsInitial}, {"secondsDynamics", s.secondsDynamics},
-          {"secondsAdjacency", s.secondsAdjacency}, {"secondsPopulation", s.secondsPopulation},
-          {"defectPasses", s.defectPasses}, {"defectsFirst", s.defectsFirst}, {"defectsLast", s.defectsLast},
-          {"secondsDefects", s.secondsDefects}};
 }
 
 int runMesh(const std::vector<std::string>& args) {
@@ -151,19 +140,7 @@ int runMesh(const std::vector<std::string>& args) {
     auto r = mesher::meshDomain(cfg.domain, *cfg.metric, cfg.options);
     mesh = std::move(r.mesh);
     metric = std::move(r.metric);
-    const auto& c = r.stats.connect;
-    stats = {{"placement", placementStatsJson(r.stats.placement)},
-             {"connect", {{"links", c.links}, {"longLinksDropped", c.longLinksDropped}, {"intersectionTests", c.intersectionTests},
-                          {"crossingsFound", c.crossingsFound}, {"deletedEdges", c.deletedEdges},
-                          {"deletionRounds", c.deletionRounds}, {"consistentTriangles", c.consistentTriangles},
-                          {"repairedTriangles", c.repairedTriangles}, {"failedRecoveries", c.failedRecoveries},
-                          {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"localRepair", c.localRepair}, {"droppedNodes", c.droppedNodes},
-                          {"secondsLocalMeshes", c.secondsLocalMeshes}, {"secondsRepair", c.secondsRepair}}},
-             {"improve", {{"badBefore", r.stats.improve.badBefore}, {"badAfter", r.stats.improve.badAfter},
-                          {"swaps", r.stats.improve.swaps}, {"moves", r.stats.improve.moves}, {"passes", r.stats.improve.passes},
-                          {"qMinBefore", r.stats.improve.qMinBefore}, {"qMinAfter", r.stats.improve.qMinAfter},
-                          {"seconds", r.stats.improve.seconds}}},
-             {"secondsValidate", r.stats.secondsValidate}};
+    stats = meshStatsJson(r.stats);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

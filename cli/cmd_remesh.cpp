@@ -1,4 +1,4 @@
-// ablmg remesh -in IN.mesh -sol IN.sol -out OUT.mesh [-hmin H] [-hmax H] [-hgrad G] [-v N]
+// ablmg remesh -in IN.mesh -sol IN.sol -out OUT.mesh [-hmin H] [-hmax H] [-hgrad G] [-v N] [--report R.json]
 //
 // The flags and files of MMG's mmg2d_O3, so ablmg drops into loops written for MMG: the input
 // mesh gives the domain (its boundary edges, with their refs, become the loops) and, with the
@@ -10,15 +10,19 @@
 #include "adapt/remesh.hpp"
 #include "cli/command.hpp"
 #include "cli/config.hpp"
+#include "cli/stats_json.hpp"
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/medit.hpp"
 #include "mesher/mesher.hpp"
+#include "mesher/quality.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <future>
 #include <iostream>
@@ -46,6 +50,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see README), long
+  --report R.json  JSON report: options, statistics of every stage, times, and the output's
+                   quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
 )";
 
@@ -88,7 +94,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
 }
 
 int runRemesh(const std::vector<std::string>& args) {
-  std::string in, sol, out;
+  std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
   int verbose = 1;
   long long seed = 1;
@@ -111,6 +117,7 @@ int runRemesh(const std::vector<std::string>& args) {
     else if (a == "-v") verbose = int(parseNumber(a, value()));
     else if (a == "--seed") seed = (long long)parseNumber(a, value());
     else if (a == "--lattice") lattice = mesher::parseLatticeOrientation(value());
+    else if (a == "--report") reportPath = value();
     else if (!a.empty() && a[0] == '-') ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
       ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
@@ -125,6 +132,7 @@ int runRemesh(const std::vector<std::string>& args) {
   if (out.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
   ABLMG_REQUIRE(std::filesystem::path(out).extension() == ".mesh", "-out '" << out << "' must end in .mesh");
   const std::string outSol = std::filesystem::path(out).replace_extension(".sol").string();
+  ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol), "--report must not be the output mesh or .sol");
 
   adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and README "Speed"
   options.hmin = hmin;
@@ -133,12 +141,13 @@ int runRemesh(const std::vector<std::string>& args) {
   options.name = in;
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
-  if (verbose >= 1) {
-    const nlohmann::json resolved = {{"in", in}, {"sol", sol}, {"out", out}, {"outSol", outSol}, {"hmin", hmin},
+  nlohmann::json resolved;
+  {
+    resolved = {{"in", in}, {"sol", sol}, {"out", out}, {"outSol", outSol}, {"hmin", hmin},
                                      {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
                                      {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)}, {"v", verbose},
-                                     {"options", meshOptionsToJson(options.mesh)}};
-    std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
+                                     {"options", meshOptionsToJson(options.mesh)}, {"report", reportPath}};
+    if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
@@ -156,6 +165,25 @@ int runRemesh(const std::vector<std::string>& args) {
   const auto tWrite = Clock::now();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
   const double secondsWrite = since(tWrite);
+  if (!reportPath.empty()) {
+    try {
+      nlohmann::json report = resolved;
+      report["stats"] = meshStatsJson(r.stats);
+      report["stats"]["clampedMetrics"] = r.clampedMetrics;
+      report["stats"]["gradedMetrics"] = r.gradation.corrections;
+      report["inVertices"] = inVertices;
+      report["vertices"] = r.mesh.numVertices();
+      report["triangles"] = r.mesh.numTriangles();
+      report["seconds"] = {{"read", secondsRead + r.secondsClamp}, {"gradation", r.secondsGradation}, {"domain", r.secondsDomain},
+                           {"backgroundField", r.secondsBackgroundField}, {"meshing", r.secondsMeshing}, {"write", secondsWrite}};
+      report["quality"] = mesher::toJson(mesher::meshQuality(r.mesh, r.metric));
+      io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
+    } catch (...) {
+      std::remove(out.c_str());  // all or nothing
+      std::remove(outSol.c_str());
+      throw;
+    }
+  }
   if (verbose >= 2) {
     const auto& p = r.stats.placement;
     const auto& c = r.stats.connect;

@@ -29,6 +29,16 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
            COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
   set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
                        PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves\\)")
+  add_test(NAME cli.remesh_report
+           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report.mesh
+                   --report ${_out}/remesh_report.json -v 0)
+  set_tests_properties(cli.remesh_report PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "repaired triangles\\) -> ")
+  add_test(NAME cli.remesh_report_contents
+           COMMAND ${CMAKE_COMMAND} -DREPORT=${_out}/remesh_report.json -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_remesh_report.cmake.in)
+  set_tests_properties(cli.remesh_report_contents PROPERTIES LABELS cli DEPENDS cli.remesh_report)
+  ablmg_cli_failure(remesh_report_is_output "--report must not be the output mesh or .sol"
+                    remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report_is_output.mesh
+                    --report ${_out}/remesh_report_is_output.mesh)
   ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
                     remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
   # The .sol is read on a second thread; the errors still come in the sequential order:
