@@ -25,6 +25,7 @@
 #include "adapt/convergence.hpp"
 #include "cli/command.hpp"
 #include "cli/config.hpp"
+#include "cli/mesh_output.hpp"
 #include "cli/problem_config.hpp"
 #include "core/error.hpp"
 #include "fem/structured_mesh.hpp"
@@ -302,6 +303,9 @@ int runAdapt(const std::vector<std::string>& argv) {
         if (!c.errors.elementH1.empty()) cells.push_back({"h1_error", 1, c.errors.elementH1});
       }
       for (auto& f : io::metricFields(c.meshMetric)) points.push_back(std::move(f));
+      auto quality = qualityFields(c.mesh, c.meshMetric);
+      for (auto& f : quality.point) points.push_back(std::move(f));
+      for (auto& f : quality.cell) cells.push_back(std::move(f));
       io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points, cells);
     }
     if (a.medit) {  // the mesh and the metric computed on it for the next cycle, as MMG/FreeFem++ read them

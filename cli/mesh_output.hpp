@@ -6,7 +6,9 @@
 #include "core/domain.hpp"
 #include "core/mesh2.hpp"
 #include "core/metric2.hpp"
+#include "io/vtu.hpp"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,12 +16,21 @@ namespace ablmg::cli {
 
 /// Writes one output of a meshing run, the format chosen by the extension of `path`:
 ///  .mesh → medit mesh, plus the metric as a tensor .sol beside it (same name, .sol);
-///  .vtu  → VTK with point fields metric (m11 m12 m22), h1, h2, angle;
+///  .vtu  → VTK with point fields metric (m11 m12 m22), h1, h2, angle and the qualityFields;
 ///  .png  → bubbles (paper §3: the unit-metric ellipse of each vertex scaled by 1/2) over the
 ///          mesh edges and the domain boundary.
 /// A mesh without triangles (bubbles only) is written as points. Atomic; throws InputError for
 /// an unknown extension (before anything is written if called through checkOutputPath first).
 void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh, const std::vector<Metric2>& metric);
+/// The fields that colour a mesh by how well it follows its metric (issue 9; ParaView): cell
+/// "quality" (q of mesher/quality.hpp, 1 = unit equilateral) and point "edge_length_min" /
+/// "edge_length_max" (the shortest and longest metric length, eq. (3), of the edges at the
+/// vertex; the target is 1, [1/√2, √2] the usual band). metric.size() == numVertices().
+struct QualityFields {
+  std::vector<io::Field> point, cell;
+};
+QualityFields qualityFields(const Mesh2& mesh, std::span<const Metric2> metric);
+
 /// Throws InputError unless `path` ends in .mesh, .vtu or .png (`what` names the flag or key).
 void checkOutputPath(const std::string& path, const std::string& what);
 

@@ -1,6 +1,6 @@
-# io/config tests: cli/config.cpp is not in a library, so test_io compiles it in.
+# io/config tests: cli/config.cpp and cli/mesh_output.cpp are not in a library, so test_io compiles them in.
 if(TARGET test_io)
-  target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp)
+  target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp)
 endif()
 
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line
