@@ -63,6 +63,20 @@ std::vector<double> elementQualities(const Mesh2& mesh, std::span<const Metric2>
   return q;
 }
 
+std::vector<double> leeAlphas(const Mesh2& mesh, std::span<const Metric2> metrics) {
+  ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
+                "leeAlphas: " << metrics.size() << " metrics for " << mesh.numVertices() << " vertices");
+  std::vector<double> alpha;
+  alpha.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const Vec2 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    double best = triangleQuality(a, b, c, metrics[t[0]]);
+    best = std::min(best, triangleQuality(a, b, c, metrics[t[1]]));
+    alpha.push_back(std::min(best, triangleQuality(a, b, c, metrics[t[2]])));
+  }
+  return alpha;
+}
+
 EdgeLengthStats edgeLengthStats(std::span<const double> lengths, double e) {
   ABLMG_REQUIRE(e > 0, "edgeLengthStats: bin width e = " << e << " must be > 0");
   EdgeLengthStats s;
@@ -107,6 +121,7 @@ MeshQuality meshQuality(const Mesh2& mesh, std::span<const Metric2> metrics, dou
   r.edges = long(l.size());
   r.edgeLengths = edgeLengthStats(l, e);
   r.elements = elementQualityStats(elementQualities(mesh, metrics));
+  r.leeAlpha = elementQualityStats(leeAlphas(mesh, metrics));
   return r;
 }
 
@@ -121,6 +136,7 @@ MeshQuality surfaceQuality(const SurfaceMesh& mesh, const Metric3Field& m3, doub
   r.edges = long(l.size());
   r.edgeLengths = edgeLengthStats(l, e);
   r.elements = elementQualityStats(leeQuality(mesh, m3));
+  r.leeAlpha = r.elements;
   return r;
 }
 
@@ -138,7 +154,8 @@ nlohmann::json toJson(const MeshQuality& q) {
             {"deviation", {{"e", l.e}, {"bins", l.deviation}}}}},
           {"element_quality",
            {{"measure", q.dimension == 2 ? "q = 4*sqrt(3)*A_M/(l1^2+l2^2+l3^2)" : "Lee alpha, eqs. (19)-(20)"},
-            {"min", el.min}, {"mean", el.mean}, {"max", el.max}, {"bins", el.bins}}}};
+            {"min", el.min}, {"mean", el.mean}, {"max", el.max}, {"bins", el.bins}}},
+          {"lee_alpha", {{"min", q.leeAlpha.min}, {"mean", q.leeAlpha.mean}, {"max", q.leeAlpha.max}, {"bins", q.leeAlpha.bins}}}};
 }
 
 std::string toText(const MeshQuality& q) {
@@ -162,12 +179,22 @@ std::string toText(const MeshQuality& q) {
   std::snprintf(buf, sizeof buf, "element quality %s:   min %.4g  mean %.4g  max %.4g\n",
                 q.dimension == 2 ? "q" : "alpha (Lee)", el.min, el.mean, el.max);
   s += buf;
-  s += "   ";
-  for (int k = 0; k < 5; ++k) {
-    std::snprintf(buf, sizeof buf, " %.1f-%.1f %s", 0.2 * k, 0.2 * (k + 1), percent(el.bins[k]).c_str());
+  const auto bins = [&](const ElementQualityStats& st) {
+    s += "   ";
+    for (int k = 0; k < 5; ++k) {
+      std::snprintf(buf, sizeof buf, " %.1f-%.1f %s", 0.2 * k, 0.2 * (k + 1), percent(st.bins[k]).c_str());
+      s += buf;
+    }
+    s += "\n";
+  };
+  bins(el);
+  if (q.dimension == 2) {
+    std::snprintf(buf, sizeof buf, "alpha (Lee, eqs. 19-20, vertex metrics):   min %.4g  mean %.4g  max %.4g\n", q.leeAlpha.min,
+                  q.leeAlpha.mean, q.leeAlpha.max);
     s += buf;
+    bins(q.leeAlpha);
   }
-  return s + "\n";
+  return s;
 }
 
 } // namespace ablmg::mesher

@@ -32,6 +32,11 @@ std::vector<double> edgeMetricLengths(const Mesh2& mesh, std::span<const Metric2
 double triangleQuality(const Vec2& a, const Vec2& b, const Vec2& c, const Metric2& m);
 /// q of every triangle of the mesh, with the vertex-averaged metric. metrics.size() == numVertices().
 std::vector<double> elementQualities(const Mesh2& mesh, std::span<const Metric2> metrics);
+/// Lee's α of every triangle of a planar mesh, eqs. (19)–(20): the smallest over the three
+/// vertices of the triangle's q in that vertex's own metric (q with M_i, Det read as √det M_i,
+/// the area scale of M_i). α ≤ 1; α = q for a constant metric; sensitive to metric variation
+/// across the triangle, which q (averaged metric) smooths. metrics.size() == numVertices().
+std::vector<double> leeAlphas(const Mesh2& mesh, std::span<const Metric2> metrics);
 
 struct EdgeLengthStats {
   long count = 0;
@@ -63,6 +68,7 @@ struct MeshQuality {
   std::string firstProblem;     ///< empty when valid
   EdgeLengthStats edgeLengths;
   ElementQualityStats elements;
+  ElementQualityStats leeAlpha;  ///< 2D: leeAlphas(); 3D: the same as elements (α is the measure there)
 };
 
 /// 2D: lengths, q and validity in the per-vertex metrics (metrics.size() == numVertices()).
@@ -72,7 +78,7 @@ MeshQuality surfaceQuality(const SurfaceMesh& mesh, const Metric3Field& m3, doub
 
 /// {"dimension", "vertices", "triangles", "edges", "valid", "first_problem",
 ///  "edge_length": {min, mean, max, in_sqrt2, within_10pct, deviation: {e, bins: [6]}},
-///  "element_quality": {measure, min, mean, max, bins: [5]}}.
+///  "element_quality": {measure, min, mean, max, bins: [5]}, "lee_alpha": {min, mean, max, bins: [5]}}.
 nlohmann::json toJson(const MeshQuality& q);
 /// A short human-readable table (several lines, each ending in '\n').
 std::string toText(const MeshQuality& q);

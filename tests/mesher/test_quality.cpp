@@ -167,3 +167,25 @@ TEST(Quality, JsonAndTextReports) {
   EXPECT_NE(text.find("3 edges; valid: yes"), std::string::npos) << text;
   EXPECT_NE(text.find("0.8-1.0 100.0%"), std::string::npos) << text;
 }
+
+TEST(Quality, LeeAlphaInThePlaneTakesTheWorstVertexMetric) {
+  const Mesh2 m = unitEquilateral();
+  // A metric field that is a scalar multiple of one tensor at every vertex: α = q (both are
+  // scale-invariant), here 1 for the identity's multiples.
+  const std::vector<Metric2> scaled = {Metric2::isotropic(1.0), Metric2::isotropic(0.5), Metric2::isotropic(3.0)};
+  EXPECT_NEAR(leeAlphas(m, scaled)[0], 1.0, 1e-14);
+  EXPECT_NEAR(elementQualities(m, scaled)[0], 1.0, 1e-14);
+  // One vertex with a stretched metric: α is that vertex's q (eq. 19's minimum), below the
+  // averaged-metric q.
+  const Metric2 stretched = Metric2::fromSizes(1.0, 0.25, 0.0);
+  const std::vector<Metric2> mixed = {Metric2::isotropic(1.0), Metric2::isotropic(1.0), stretched};
+  const double expected = triangleQuality(m.vertices[0], m.vertices[1], m.vertices[2], stretched);
+  EXPECT_LT(expected, 0.9);
+  EXPECT_NEAR(leeAlphas(m, mixed)[0], expected, 1e-15);
+  EXPECT_LT(leeAlphas(m, mixed)[0], elementQualities(m, mixed)[0]);
+  const MeshQuality q = meshQuality(m, mixed);
+  EXPECT_NEAR(q.leeAlpha.min, expected, 1e-15);
+  EXPECT_EQ(toJson(q)["lee_alpha"]["min"].get<double>(), q.leeAlpha.min);
+  EXPECT_NE(toText(q).find("alpha (Lee"), std::string::npos);
+  EXPECT_THROW(leeAlphas(m, std::vector<Metric2>(2)), InputError);
+}
