@@ -199,9 +199,30 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
     }
     return Domain::disk(c, r, samples);
   }
+  // "smooth": true/false for every loop, or one boolean per loop (outer first, then the holes).
+  const auto applySmooth = [&](std::vector<BoundaryLoop>& loops) {
+    if (!j.contains("smooth")) return;
+    const Where ws = w / "smooth";
+    const json& S = j["smooth"];
+    if (S.is_boolean()) {
+      for (auto& loop : loops) loop.smooth = S.get<bool>();
+    } else {
+      requireType(S, S.is_array() && S.size() == loops.size(), "boolean or one boolean per loop", ws);
+      for (std::size_t l = 0; l < S.size(); ++l) {
+        requireType(S[l], S[l].is_boolean(), "boolean", ws[l]);
+        loops[l].smooth = S[l].get<bool>();
+      }
+    }
+  };
   if (j.contains("poly")) {
-    checkKeys(j, {"poly"}, w);
-    return io::readPoly(resolve(getString(j["poly"], w / "poly"), baseDir));
+    checkKeys(j, {"poly", "smooth"}, w);
+    Domain d = io::readPoly(resolve(getString(j["poly"], w / "poly"), baseDir));
+    if (!j.contains("smooth")) return d;
+    std::vector<BoundaryLoop> loops = d.loops();
+    applySmooth(loops);
+    BoundaryLoop outer = std::move(loops.front());
+    loops.erase(loops.begin());
+    return Domain(std::move(outer), std::move(loops));
   }
   if (j.contains("loops")) {
     checkKeys(j, {"loops", "tags", "smooth"}, w);
@@ -231,19 +252,7 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
         }
       }
     }
-    if (j.contains("smooth")) {  // true/false for every loop, or one boolean per loop
-      const Where ws = w / "smooth";
-      const json& S = j["smooth"];
-      if (S.is_boolean()) {
-        for (auto& loop : loops) loop.smooth = S.get<bool>();
-      } else {
-        requireType(S, S.is_array() && S.size() == L.size(), "boolean or one boolean per loop", ws);
-        for (std::size_t l = 0; l < S.size(); ++l) {
-          requireType(S[l], S[l].is_boolean(), "boolean", ws[l]);
-          loops[l].smooth = S[l].get<bool>();
-        }
-      }
-    }
+    applySmooth(loops);
     BoundaryLoop outer = std::move(loops.front());
     loops.erase(loops.begin());
     try {

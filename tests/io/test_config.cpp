@@ -69,6 +69,26 @@ TEST(Config, SmoothLoops) {
             std::string::npos);
 }
 
+TEST(Config, SmoothPolyLoops) {
+  const auto poly = [&](const std::string& smooth) {
+    return cli::parseConfig(R"({"domain": {"poly": "square_hole.poly")" + smooth + R"(}, "metric": {"h": "0.2"}})", "c", kData);
+  };
+  const auto plain = poly("");
+  for (const auto& l : plain.domain.loops()) EXPECT_FALSE(l.smooth);
+  const auto mixed = poly(R"(, "smooth": [false, true])");
+  ASSERT_EQ(mixed.domain.loops().size(), 2u);
+  EXPECT_FALSE(mixed.domain.loops()[0].smooth);
+  EXPECT_TRUE(mixed.domain.loops()[1].smooth);
+  EXPECT_NEAR(mixed.domain.area(), 15.0, 1e-14);
+  EXPECT_EQ(mixed.domain.loops()[1].tags, plain.domain.loops()[1].tags);  // the file's markers stay
+  try {
+    poly(R"(, "smooth": [true, true, true])");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("c: domain.smooth: expected boolean or one boolean per loop"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Config, ErrorsNameTheKeyPath) {
   EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": 0.1}})"), "config.json: metric.h1: expected string, got number");
   EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "colour": 1})").find("config.json: colour: unknown key"),
