@@ -45,6 +45,26 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(aniso "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"100\", \"h2\": \"1e-3\", \"theta\": \"0.3\"}}")
   add_test(NAME cli.hostile_anisotropy_1e5 COMMAND ablmg mesh ${_hdir}/aniso.json -o ${_hdir}/aniso.mesh)
   set_tests_properties(cli.hostile_anisotropy_1e5 PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in" TIMEOUT 300)
+  # Near-singular SPD tensors: det/trace² ≈ 2.5e-9 (sizes 0.007 and 100) and ≈ 2.5e-14 (the
+  # long size far beyond the domain): valid meshes.
+  ablmg_hostile_config(near_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1e4\", \"m12\": \"0.99999999e4\", \"m22\": \"1e4\"}}")
+  add_test(NAME cli.hostile_near_singular_metric COMMAND ablmg mesh ${_hdir}/near_singular.json -o ${_hdir}/near_singular.mesh)
+  set_tests_properties(cli.hostile_near_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
+  ablmg_hostile_config(nearer_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"0.9999999999999\", \"m22\": \"1\"}}")
+  add_test(NAME cli.hostile_nearer_singular_metric COMMAND ablmg mesh ${_hdir}/nearer_singular.json -o ${_hdir}/nearer_singular.mesh)
+  set_tests_properties(cli.hostile_nearer_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles in" TIMEOUT 120)
+endif()
+# Non-finite values in a .sol (NaN, ±Inf, overflow), tensor and scalar: one error line naming file:line.
+if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp AND COMMAND ablmg_cli_failure)
+  foreach(v nan inf -inf 1e400)
+    string(MAKE_C_IDENTIFIER "${v}" _id)
+    file(WRITE ${_hdir}/sol_${_id}.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 3\n${v} 0 1\n1 0 1\n1 0 1\n1 0 1\n1 0 1\nEnd\n")
+    ablmg_cli_failure(hostile_sol_${_id} "sol_${_id}.sol:6: tensor entry is not finite: '${v}'"
+                      remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_${_id}.sol -out ${_hdir}/sol_${_id}.mesh)
+  endforeach()
+  file(WRITE ${_hdir}/sol_size_nan.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 1\n1\n1\nnan\n1\n1\nEnd\n")
+  ablmg_cli_failure(hostile_sol_size_nan "sol_size_nan.sol:8: size value is not finite: 'nan'"
+                    remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_size_nan.sol -out ${_hdir}/sol_size_nan.mesh)
 endif()
 
 # Determinism: same config, 1 or 2 threads → byte-identical .mesh and .sol.
