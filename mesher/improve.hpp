@@ -55,6 +55,7 @@ void requireValid(const ImproveOptions& options);
 struct ImproveStats {
   long badBefore = 0, badAfter = 0;     ///< triangles with q < qThreshold
   long swaps = 0, moves = 0;            ///< edge flips and vertex relocations done
+  long collapses = 0, splits = 0;       ///< interior edges collapsed (−1 vertex) and split (+1 vertex)
   int passes = 0;                       ///< passes run (≤ maxPasses)
   double qMinBefore = 0, qMinAfter = 0; ///< smallest q over the mesh (0 for an empty mesh)
   double seconds = 0;
