@@ -159,7 +159,8 @@ int runMesh(const std::vector<std::string>& args) {
                           {"swaps", c.swaps}, {"swapCapHit", c.swapCapHit}, {"localRepair", c.localRepair}, {"droppedNodes", c.droppedNodes},
                           {"secondsLocalMeshes", c.secondsLocalMeshes}, {"secondsRepair", c.secondsRepair}}},
              {"improve", {{"badBefore", r.stats.improve.badBefore}, {"badAfter", r.stats.improve.badAfter},
-                          {"swaps", r.stats.improve.swaps}, {"moves", r.stats.improve.moves}, {"passes", r.stats.improve.passes},
+                          {"swaps", r.stats.improve.swaps}, {"moves", r.stats.improve.moves},
+                          {"collapses", r.stats.improve.collapses}, {"passes", r.stats.improve.passes},
                           {"qMinBefore", r.stats.improve.qMinBefore}, {"qMinAfter", r.stats.improve.qMinAfter},
                           {"seconds", r.stats.improve.seconds}}},
              {"secondsValidate", r.stats.secondsValidate}};

@@ -43,8 +43,7 @@ struct StarSlot {
 
 /// The mesh being improved, with what the edits need: triangle neighbours, one triangle per
 /// vertex (to start star walks), boundary flags and every triangle's q, all kept up to date.
-/// Collapses leave dead vertices and triangles behind (reused by splits, LIFO); compact()
-/// removes the rest at the end.
+/// Collapses leave dead vertices and triangles behind; compact() removes them at the end.
 class Improver {
 public:
   Improver(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field, const ImproveOptions& options,
@@ -108,7 +107,7 @@ public:
   }
 
 private:
-  static long edits(const ImproveStats& s) { return s.swaps + s.moves + s.collapses + s.splits; }
+  static long edits(const ImproveStats& s) { return s.swaps + s.moves + s.collapses; }
   bool isBad(int t) const { return !deadTriangle_[std::size_t(t)] && quality_[std::size_t(t)] < options_.qThreshold; }
 
   void sortWorstFirst(std::vector<int>& ts) const {
@@ -221,7 +220,7 @@ private:
     updateQuality(u);
   }
 
-  // ---- placing one vertex in a star (moves, and the vertex a collapse or split leaves) ----
+  // ---- placing one vertex in a star (moves, and the vertex a collapse leaves) ----
 
   /// The triangles around interior vertex v as star slots; false when the walk meets the
   /// boundary or does not close within kMaxStar triangles.
@@ -370,30 +369,122 @@ private:
     for (const StarSlot& s : slots_) updateQuality(s.t);
   }
 
+  // ---- (c) collapses of a short interior edge ----
+
+  /// The edge a–b of t opposite local k, t = (p, a, b), and its neighbour u = (q, b, a).
+  struct EdgeQuad {
+    int t, u, p, a, b, q;
+  };
+  std::optional<EdgeQuad> edgeQuad(int t, int k) const {
+    const int u = neighbours_[std::size_t(t)][std::size_t(k)];
+    if (u < 0 || !sameRef(t, u)) return std::nullopt;  // boundary edge or region border
+    const auto& tt = mesh_.triangles[std::size_t(t)];
+    const int a = tt[std::size_t(nextLocal(k))], b = tt[std::size_t(prevLocal(k))];
+    return EdgeQuad{t, u, tt[std::size_t(k)], a, b, oppositeVertex(u, a, b)};
+  }
+  /// The point of a–b where the lengths from a in a's metric and to b in b's metric agree.
+  Vec2 metricMidpoint(int a, int b) const {
+    const Vec2 &xa = mesh_.vertices[std::size_t(a)], &xb = mesh_.vertices[std::size_t(b)];
+    const double la = metrics_[std::size_t(a)].length(xb - xa), lb = metrics_[std::size_t(b)].length(xb - xa);
+    return xa + (lb / (la + lb)) * (xb - xa);
+  }
+
+  /// Fills slots_ with the star of a after b is merged into it (the edge e collapsed): the
+  /// triangles around a and b but t and u, b replaced by a. False when a or b is on the
+  /// boundary, a star is open or too long, the triangles do not share one ref, or the rings of
+  /// a and b share a vertex other than p and q (the collapse would fold the mesh: link condition).
+  /// `before`: the min q of the triangles the collapse changes or removes.
+  bool collapseStar(const EdgeQuad& e, double& before) {
+    if (onBoundary_[std::size_t(e.a)] || onBoundary_[std::size_t(e.b)]) return false;
+    if (!star(e.a, starA_) || !star(e.b, slots_)) return false;
+    if (starA_.size() + slots_.size() - 2 > std::size_t(kMaxStar)) return false;
+    ringA_.clear();
+    for (const StarSlot& s : starA_) ringA_.push_back(ringSide(s)[0]);
+    std::sort(ringA_.begin(), ringA_.end());
+    int shared = 0;
+    for (const StarSlot& s : slots_) shared += std::binary_search(ringA_.begin(), ringA_.end(), ringSide(s)[0]);
+    if (shared != 2) return false;
+    std::erase_if(slots_, [&](const StarSlot& s) { return s.t == e.t || s.t == e.u; });
+    for (StarSlot& s : slots_) s.corners[std::size_t(s.local)] = e.a;
+    before = std::numeric_limits<double>::infinity();
+    for (const StarSlot& s : starA_) {
+      before = std::min(before, quality_[std::size_t(s.t)]);
+      if (s.t != e.t && s.t != e.u) slots_.push_back(s);
+    }
+    for (const StarSlot& s : slots_)
+      if (!sameRef(s.t, e.t)) return false;
+    for (const StarSlot& s : slots_) before = std::min(before, quality_[std::size_t(s.t)]);
+    return true;
+  }
+  /// The best place for the vertex left by collapsing e (tried: a, b, their metric midpoint
+  /// and the candidates around it), if it raises the min q of the changed triangles by more
+  /// than collapseMargin.
+  std::optional<Candidate> bestCollapse(const EdgeQuad& e) {
+    double before;
+    if (!collapseStar(e, before)) return std::nullopt;
+    const Vec2 mid = metricMidpoint(e.a, e.b);
+    const auto best = place(std::nullopt, mid, average(metrics_[std::size_t(e.a)], metrics_[std::size_t(e.b)]),
+                            {mesh_.vertices[std::size_t(e.a)], mesh_.vertices[std::size_t(e.b)], mid});
+    if (!best || !(best->q > before + options_.collapseMargin)) return std::nullopt;
+    return best;
+  }
+  /// Merges b into a (at `to`): t and u and vertex b die; their outer neighbours are stitched.
+  void collapse(const EdgeQuad& e, const Candidate& to) {
+    double before;
+    collapseStar(e, before);  // true: bestCollapse(e) checked it
+    const int nBP = neighbours_[std::size_t(e.t)][std::size_t(localIndex(mesh_.triangles[std::size_t(e.t)], e.a))];
+    const int nPA = neighbours_[std::size_t(e.t)][std::size_t(localIndex(mesh_.triangles[std::size_t(e.t)], e.b))];
+    const int nAQ = neighbours_[std::size_t(e.u)][std::size_t(localIndex(mesh_.triangles[std::size_t(e.u)], e.b))];
+    const int nQB = neighbours_[std::size_t(e.u)][std::size_t(localIndex(mesh_.triangles[std::size_t(e.u)], e.a))];
+    replaceNeighbour(nBP, e.t, nPA), replaceNeighbour(nPA, e.t, nBP);  // b–p and p–a become one edge a–p
+    replaceNeighbour(nAQ, e.u, nQB), replaceNeighbour(nQB, e.u, nAQ);  // a–q and q–b become one edge a–q
+    deadTriangle_[std::size_t(e.t)] = deadTriangle_[std::size_t(e.u)] = 1;
+    deadVertex_[std::size_t(e.b)] = 1;
+    mesh_.vertices[std::size_t(e.a)] = to.x;
+    metrics_[std::size_t(e.a)] = to.m;
+    triangleOfVertex_[std::size_t(e.a)] = slots_[0].t;
+    triangleOfVertex_[std::size_t(e.p)] = nPA;
+    triangleOfVertex_[std::size_t(e.q)] = nAQ;
+    for (const StarSlot& s : slots_) {
+      mesh_.triangles[std::size_t(s.t)] = s.corners;
+      updateQuality(s.t);
+    }
+  }
+
   // ---- the choice ----
 
-  /// Bad triangle t gets the better of its best flip and the best move of one of its
-  /// vertices, judged by the min q of the triangles each changes (a tie goes to the flip).
+  /// Bad triangle t gets the best of: its best flip, the best move of one of its vertices and
+  /// the collapse of its shortest edge (metric length), judged by the min q of the triangles
+  /// each changes (a tie goes to the earlier kind).
   void improveTriangle(int t, ImproveStats& stats) {
-    int flipEdge = -1;
-    double flipQ = -std::numeric_limits<double>::infinity();
+    enum class Kind { None, Flip, Move, Collapse } kind = Kind::None;
+    double bestQ = -std::numeric_limits<double>::infinity();
+    int flipEdge = -1, mover = -1;
+    Candidate chosen{};
     for (int k = 0; k < 3; ++k) {
       const int u = neighbours_[std::size_t(t)][std::size_t(k)];
       if (u < 0) continue;
       const double before = std::min(quality_[std::size_t(t)], quality_[std::size_t(u)]);
       const double after = flipQuality(t, k);
-      if (after > before + options_.swapMargin && after > flipQ) flipEdge = k, flipQ = after;
+      if (after > before + options_.swapMargin && after > bestQ) kind = Kind::Flip, flipEdge = k, bestQ = after;
     }
-    int mover = -1;
-    Candidate move{};
     for (int v : std::array<int, 3>(mesh_.triangles[std::size_t(t)]))
-      if (const auto c = bestMove(v); c && (mover < 0 || c->q > move.q)) mover = v, move = *c;
-    if (mover >= 0 && (flipEdge < 0 || move.q > flipQ)) {
-      moveVertex(mover, move);
-      ++stats.moves;
-    } else if (flipEdge >= 0) {
-      flip(t, flipEdge);
-      ++stats.swaps;
+      if (const auto c = bestMove(v); c && c->q > bestQ) kind = Kind::Move, mover = v, chosen = *c, bestQ = c->q;
+    int shortest = 0;
+    double shortestLength = std::numeric_limits<double>::infinity();
+    const auto& tr = mesh_.triangles[std::size_t(t)];
+    for (int k = 0; k < 3; ++k)
+      if (const double l = edgeLength(tr[std::size_t(nextLocal(k))], tr[std::size_t(prevLocal(k))]); l < shortestLength)
+        shortest = k, shortestLength = l;
+    std::optional<EdgeQuad> collapsed;
+    if (options_.collapseEdges)
+      if (const auto e = edgeQuad(t, shortest))
+        if (const auto c = bestCollapse(*e); c && c->q > bestQ) kind = Kind::Collapse, collapsed = e, chosen = *c, bestQ = c->q;
+    switch (kind) {
+      case Kind::None: break;
+      case Kind::Flip: flip(t, flipEdge), ++stats.swaps; break;
+      case Kind::Move: moveVertex(mover, chosen), ++stats.moves; break;
+      case Kind::Collapse: collapse(*collapsed, chosen), ++stats.collapses; break;
     }
   }
 
@@ -405,11 +496,11 @@ private:
   std::vector<std::array<int, 3>> neighbours_;   ///< across the side opposite local vertex k; −1: boundary
   std::vector<int> triangleOfVertex_;            ///< one live triangle holding each live vertex
   std::vector<char> onBoundary_;                 ///< vertex lies on a boundary edge
-  std::vector<char> deadVertex_, deadTriangle_;  ///< removed by a collapse (slots reused by splits)
-  std::vector<int> freeVertices_, freeTriangles_;///< dead ids not yet reused, LIFO
+  std::vector<char> deadVertex_, deadTriangle_;  ///< removed by a collapse (until compact())
   std::vector<char> triangleMark_;               ///< triangle is in touched_
   std::vector<int> touched_;                     ///< triangles changed in this pass (marked)
-  std::vector<StarSlot> slots_;                  ///< the star being placed in (scratch)
+  std::vector<StarSlot> slots_, starA_;          ///< the star being placed in; scratch
+  std::vector<int> ringA_;                       ///< scratch
 };
 
 double minOf(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::min_element(x.begin(), x.end()); }
@@ -420,6 +511,8 @@ void requireValid(const ImproveOptions& o) {
   ABLMG_REQUIRE(o.qThreshold > 0 && o.qThreshold <= 1, "improve options: qThreshold must be in (0, 1], got " << o.qThreshold);
   ABLMG_REQUIRE(o.maxPasses >= 0, "improve options: maxPasses must be >= 0, got " << o.maxPasses);
   ABLMG_REQUIRE(o.swapMargin >= 0 && std::isfinite(o.swapMargin), "improve options: swapMargin must be >= 0, got " << o.swapMargin);
+  ABLMG_REQUIRE(o.collapseMargin >= 0 && std::isfinite(o.collapseMargin),
+                "improve options: collapseMargin must be >= 0, got " << o.collapseMargin);
   ABLMG_REQUIRE(o.moveMargin >= 0 && std::isfinite(o.moveMargin), "improve options: moveMargin must be >= 0, got " << o.moveMargin);
 }
 
