@@ -58,6 +58,9 @@ public:
     deadVertex_.assign(std::size_t(mesh_.numVertices()), 0);
     triangleMark_.assign(std::size_t(mesh_.numTriangles()), 0);
     deadTriangle_.assign(std::size_t(mesh_.numTriangles()), 0);
+    changedAt_.assign(std::size_t(mesh_.numTriangles()), 0);
+    collapseFailedAt_.assign(std::size_t(mesh_.numTriangles()), -1);
+    moveFailedAt_.assign(std::size_t(mesh_.numVertices()), -1);
   }
 
   /// Runs the passes from the bad triangles `bad`; fills passes and the edit counts.
@@ -154,7 +157,16 @@ private:
   void updateQuality(int t) {
     const auto& tr = mesh_.triangles[std::size_t(t)];
     quality_[std::size_t(t)] = qualityOfCorners(tr[0], tr[1], tr[2]);
+    changedAt_[std::size_t(t)] = edits_;
     touch(t);
+  }
+  /// No triangle of `slots` changed since edit number `stamp` (a search that failed then
+  /// would fail again: its result depends only on these triangles' vertices and metrics).
+  bool unchangedSince(const std::vector<StarSlot>& slots, long stamp) const {
+    if (stamp < 0) return false;
+    for (const StarSlot& s : slots)
+      if (changedAt_[std::size_t(s.t)] > stamp) return false;
+    return true;
   }
   /// Metric length of the edge a–b (eq. 3 with the mean of the end metrics, as `ablmg stats`).
   double edgeLength(int a, int b) const {
@@ -351,13 +363,17 @@ private:
   /// does not raise the min q of its star by more than moveMargin.
   std::optional<Candidate> bestMove(int v) {
     if (onBoundary_[std::size_t(v)] || !star(v, slots_)) return std::nullopt;
+    if (unchangedSince(slots_, moveFailedAt_[std::size_t(v)])) return std::nullopt;
     double before = std::numeric_limits<double>::infinity();
     for (const StarSlot& s : slots_) before = std::min(before, quality_[std::size_t(s.t)]);
     const Vec2 x = mesh_.vertices[std::size_t(v)];
     Candidate stay = at(x, metrics_[std::size_t(v)]);
     stay.q = before;
     const auto best = place(stay, x, metrics_[std::size_t(v)]);
-    if (!(best->q > before + options_.moveMargin)) return std::nullopt;
+    if (!(best->q > before + options_.moveMargin)) {
+      moveFailedAt_[std::size_t(v)] = edits_;
+      return std::nullopt;
+    }
     return best;
   }
 
@@ -422,10 +438,15 @@ private:
   std::optional<Candidate> bestCollapse(const EdgeQuad& e) {
     double before;
     if (!collapseStar(e, before)) return std::nullopt;
+    const long failedAt = collapseFailedAt_[std::size_t(e.t)];
+    if (unchangedSince(starA_, failedAt) && unchangedSince(slots_, failedAt)) return std::nullopt;  // t, u ∈ starA_
     const Vec2 mid = metricMidpoint(e.a, e.b);
     const auto best = place(std::nullopt, mid, average(metrics_[std::size_t(e.a)], metrics_[std::size_t(e.b)]),
                             {mesh_.vertices[std::size_t(e.a)], mesh_.vertices[std::size_t(e.b)], mid});
-    if (!best || !(best->q > before + options_.collapseMargin)) return std::nullopt;
+    if (!best || !(best->q > before + options_.collapseMargin)) {
+      collapseFailedAt_[std::size_t(e.t)] = edits_;
+      return std::nullopt;
+    }
     return best;
   }
   /// Merges b into a (at `to`): t and u and vertex b die; their outer neighbours are stitched.
@@ -480,6 +501,7 @@ private:
     if (options_.collapseEdges)
       if (const auto e = edgeQuad(t, shortest))
         if (const auto c = bestCollapse(*e); c && c->q > bestQ) kind = Kind::Collapse, collapsed = e, chosen = *c, bestQ = c->q;
+    if (kind != Kind::None) ++edits_;
     switch (kind) {
       case Kind::None: break;
       case Kind::Flip: flip(t, flipEdge), ++stats.swaps; break;
@@ -499,6 +521,10 @@ private:
   std::vector<char> deadVertex_, deadTriangle_;  ///< removed by a collapse (until compact())
   std::vector<char> triangleMark_;               ///< triangle is in touched_
   std::vector<int> touched_;                     ///< triangles changed in this pass (marked)
+  long edits_ = 0;                               ///< edits made so far
+  std::vector<long> changedAt_;                  ///< per triangle: edits_ when it last changed
+  std::vector<long> moveFailedAt_;               ///< per vertex: edits_ when bestMove last failed (−1: never)
+  std::vector<long> collapseFailedAt_;           ///< per triangle: edits_ when collapsing its shortest edge last failed
   std::vector<StarSlot> slots_, starA_;          ///< the star being placed in; scratch
   std::vector<int> ringA_;                       ///< scratch
 };

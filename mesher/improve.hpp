@@ -43,7 +43,9 @@
 /// input gives a bit-identical output. Cost: O(N) to build the triangle adjacency (counting
 /// sort of half-edges, Mesh2::triangleNeighbours) and the qualities, then O(bad triangles ×
 /// star size × field evaluations (≤ 140 per vertex or collapse tried)) per pass, and O(N) to
-/// compact after a collapse; with no bad triangle, one O(N) quality scan and nothing else.
+/// compact after a collapse; a move or collapse search that failed is not repeated until a
+/// triangle it depends on changes (same result, less work on stuck triangles). With no bad
+/// triangle, one O(N) quality scan and nothing else.
 #include "core/mesh2.hpp"
 #include "core/metric2.hpp"
 #include "core/metric_field.hpp"
