@@ -194,7 +194,8 @@ int runRemesh(const std::vector<std::string>& args) {
               << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
               << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass "
               << r.stats.improve.seconds << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
-              << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves), validation " << r.stats.secondsValidate
+              << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
+              << " collapses), validation " << r.stats.secondsValidate
               << ", write " << secondsWrite << "\n";
   }
   if (verbose >= 0)

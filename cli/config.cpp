@@ -117,7 +117,9 @@ const std::vector<Binding<ImproveOptions>>& improveBindings() {
                                                          {"qThreshold", &ImproveOptions::qThreshold},
                                                          {"maxPasses", &ImproveOptions::maxPasses},
                                                          {"swapMargin", &ImproveOptions::swapMargin},
-                                                         {"moveMargin", &ImproveOptions::moveMargin}};
+                                                         {"moveMargin", &ImproveOptions::moveMargin},
+                                                         {"collapseEdges", &ImproveOptions::collapseEdges},
+                                                         {"collapseMargin", &ImproveOptions::collapseMargin}};
   return b;
 }
 

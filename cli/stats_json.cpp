@@ -28,6 +28,7 @@ nlohmann::json meshStatsJson(const mesher::MeshStats& s) {
                        {"droppedNodes", c.droppedNodes}, {"secondsLocalMeshes", c.secondsLocalMeshes},
                        {"secondsRepair", c.secondsRepair}}},
           {"improve", {{"badBefore", i.badBefore}, {"badAfter", i.badAfter}, {"swaps", i.swaps}, {"moves", i.moves},
+                       {"collapses", i.collapses},
                        {"passes", i.passes}, {"qMinBefore", i.qMinBefore}, {"qMinAfter", i.qMinAfter}, {"seconds", i.seconds}}},
           {"secondsValidate", s.secondsValidate}};
 }

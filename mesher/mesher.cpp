@@ -29,10 +29,12 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   result.stats.connect = connected.stats;
   result.metric.reserve(connected.nodeOfVertex.size());
   for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
-  // The quality post-pass (improve.hpp): moved vertices get the field's metric in result.metric.
+  // The quality post-pass (improve.hpp): moved vertices get the field's metric in result.metric;
+  // a collapse removes a vertex from both the mesh and result.metric (they stay in step).
   if (options.improve.enabled)
     result.stats.improve = improveQuality(connected.mesh, result.metric, metric, options.improve);
-  const bool improved = result.stats.improve.swaps + result.stats.improve.moves > 0;
+  const ImproveStats& is = result.stats.improve;
+  const bool improved = is.swaps + is.moves + is.collapses > 0;
   // Every mesh returned is valid: checked here unless connect() already checked this very mesh
   // and the post-pass left it as it was.
   const auto t0 = std::chrono::steady_clock::now();

@@ -28,7 +28,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   add_test(NAME cli.remesh_reports_post_pass
            COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
   set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
-                       PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves\\)")
+                       PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves, [0-9]+ collapses\\)")
   add_test(NAME cli.remesh_report
            COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report.mesh
                    --report ${_out}/remesh_report.json -v 0)

@@ -1,7 +1,9 @@
 // mesher/improve.hpp: the quality post-pass — a pushed interior vertex is put back (q min
 // raised, mesh valid, boundary and vertex count kept, moved metrics re-evaluated); boundary
-// vertices never move; swaps only across strictly convex quadrilaterals; determinism; q min
-// never decreases on randomly perturbed meshes; option errors; meshDomain's wiring.
+// vertices never move; swaps only across strictly convex quadrilaterals; a cluster of two
+// nodes that no move can spread is collapsed (and only then fixed); determinism; q min never
+// decreases and the boundary stays on randomly perturbed meshes; option errors; meshDomain's
+// wiring (metric vector in step with the vertices after collapses).
 #include "mesher/improve.hpp"
 #include "mesher/mesher.hpp"
 #include "mesher/quality.hpp"
@@ -12,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <random>
 
 using namespace ablmg;
@@ -59,16 +63,18 @@ double minQuality(const Mesh2& mesh, const std::vector<Metric2>& metrics) {
   return *std::min_element(q.begin(), q.end());
 }
 
+/// The same boundary edges in the same order, with the same refs and bit-identical end points
+/// (ids may differ: a collapse renumbers the vertices after the one it removes).
 bool sameBoundary(const Mesh2& a, const Mesh2& b) {
   if (a.boundaryEdges.size() != b.boundaryEdges.size()) return false;
   for (std::size_t k = 0; k < a.boundaryEdges.size(); ++k) {
     const auto &x = a.boundaryEdges[k], &y = b.boundaryEdges[k];
-    if (x.a != y.a || x.b != y.b || x.ref != y.ref) return false;
+    if (x.ref != y.ref || a.vertices[std::size_t(x.a)] != b.vertices[std::size_t(y.a)] ||
+        a.vertices[std::size_t(x.b)] != b.vertices[std::size_t(y.b)])
+      return false;
   }
-  const auto on = boundaryFlags(a);
-  for (std::size_t v = 0; v < on.size(); ++v)
-    if (on[v] && a.vertices[v] != b.vertices[v]) return false;  // bit-identical positions
-  return true;
+  const auto onA = boundaryFlags(a), onB = boundaryFlags(b);
+  return std::count(onA.begin(), onA.end(), 1) == std::count(onB.begin(), onB.end(), 1);
 }
 
 /// Moves each interior vertex of `mesh` by up to `amplitude` per coordinate, keeping every
@@ -107,6 +113,21 @@ bool hasEdge(const Mesh2& m, int a, int b) {
   for (const auto& e : m.edges())
     if (e[0] == std::min(a, b) && e[1] == std::max(a, b)) return true;
   return false;
+}
+
+/// A regular hexagon of unit side (boundary v0…v5, v_k at 60k°) with two interior vertices
+/// a = (−ε, 0), b = (ε, 0) on a short edge where one centre vertex belongs: b is joined to
+/// v5, v0, v1, v2, a to v2, v3, v4, v5. In the identity metric the best mesh is the six
+/// equilateral triangles around one centre vertex; with two vertices no placement comes close.
+Mesh2 hexagonWithTwoCentres(double eps) {
+  Mesh2 m;
+  for (int k = 0; k < 6; ++k) m.vertices.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
+  m.vertices.emplace_back(-eps, 0);  // a = 6
+  m.vertices.emplace_back(eps, 0);   // b = 7
+  const int a = 6, b = 7;
+  m.triangles = {{b, 5, 0}, {b, 0, 1}, {b, 1, 2}, {b, 2, a}, {b, a, 5}, {a, 2, 3}, {a, 3, 4}, {a, 4, 5}};
+  for (int k = 0; k < 6; ++k) m.boundaryEdges.push_back({k, (k + 1) % 6, 1 + k});
+  return m;
 }
 
 } // namespace
@@ -236,11 +257,103 @@ TEST(Improve, SameInputSameOutput) {
   }
   EXPECT_EQ(sa.swaps, sb.swaps);
   EXPECT_EQ(sa.moves, sb.moves);
+  EXPECT_EQ(sa.collapses, sb.collapses);
   EXPECT_EQ(sa.passes, sb.passes);
   EXPECT_EQ(sa.qMinAfter, sb.qMinAfter);
 }
 
+TEST(Improve, CollapseMergesTwoNodesNoMoveCanSpread) {
+  const ConstantMetricField field{Metric2()};
+  const Mesh2 input = hexagonWithTwoCentres(1e-3);
+  const double area = input.area();
+  input.requireValid("input", area);
+  const std::vector<Metric2> inputMetrics(8);
+  ASSERT_LT(minQuality(input, inputMetrics), 0.01);
+
+  // Moves and swaps alone cannot reach the threshold: two nodes where one belongs.
+  Mesh2 moved = input;
+  std::vector<Metric2> movedMetrics = inputMetrics;
+  const ImproveStats sm = improveQuality(moved, movedMetrics, field, {.qThreshold = 0.95, .collapseEdges = false});
+  EXPECT_EQ(sm.collapses, 0);
+  EXPECT_GT(sm.moves, 0);
+  EXPECT_LT(sm.qMinAfter, 0.9);
+
+  // The collapse merges a and b at the centre: six equilateral triangles.
+  Mesh2 mesh = input;
+  std::vector<Metric2> metrics = inputMetrics;
+  const ImproveStats s = improveQuality(mesh, metrics, field, {.qThreshold = 0.95});
+  mesh.requireValid("improved", area);
+  EXPECT_EQ(s.collapses, 1);
+  EXPECT_EQ(mesh.numVertices(), 7);
+  EXPECT_EQ(mesh.numTriangles(), 6);
+  ASSERT_EQ(metrics.size(), 7u);
+  EXPECT_TRUE(sameBoundary(mesh, input));
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(mesh.vertices[std::size_t(k)], input.vertices[std::size_t(k)]);  // ids kept
+  EXPECT_GT(s.qMinAfter, 0.99);
+  EXPECT_GT(s.qMinAfter, sm.qMinAfter + 0.1);
+  EXPECT_DOUBLE_EQ(s.qMinAfter, minQuality(mesh, metrics));
+  EXPECT_LT(mesh.vertices[6].norm(), 0.02);
+}
+
+TEST(Improve, NoCollapseOfAnEdgeWithABoundaryEnd) {
+  // Interior vertex b pushed next to boundary vertex v0: the bad triangles' shortest edge is
+  // b–v0, which must not collapse (v0 would move or vanish); a move fixes b instead, exactly
+  // as with collapses switched off.
+  const ConstantMetricField field{Metric2()};
+  Mesh2 mesh = hexagonWithTwoCentres(0.2);
+  mesh.vertices[7] = Vec2(0.99, 0.001);
+  mesh.requireValid("input", mesh.area());
+  std::vector<Metric2> metrics(8);
+  const Mesh2 before = mesh;
+  Mesh2 noCollapse = mesh;
+  std::vector<Metric2> noCollapseMetrics = metrics;
+  const ImproveStats s = improveQuality(mesh, metrics, field, {.qThreshold = 0.8, .maxPasses = 1});
+  improveQuality(noCollapse, noCollapseMetrics, field, {.qThreshold = 0.8, .maxPasses = 1, .collapseEdges = false});
+  mesh.requireValid("improved", before.area());
+  EXPECT_LT(s.qMinBefore, 0.05);
+  EXPECT_GT(s.moves, 0);
+  EXPECT_EQ(s.collapses, 0);
+  EXPECT_EQ(mesh.vertices, noCollapse.vertices);
+  EXPECT_EQ(mesh.triangles, noCollapse.triangles);
+  EXPECT_TRUE(sameBoundary(mesh, before));
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(mesh.vertices[std::size_t(k)], before.vertices[std::size_t(k)]);
+  EXPECT_GT(s.qMinAfter, s.qMinBefore);
+}
+
+TEST(Improve, CollapsesAreDeterministicAndKeepTheMetricInStep) {
+  // A perturbed graded grid at a high threshold: many collapses and moves.
+  const int n = 16;
+  const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, "0.05 + 0.1*x", "0.05 + 0.05*y", "0.3");
+  Mesh2 input = gridMesh(n);
+  perturbInterior(input, 0.49 / n, 11);
+  input.requireValid("input", 1.0);
+  const std::vector<Metric2> inputMetrics = metricsAtVertices(input, field);
+  Mesh2 a = input, b = input;
+  std::vector<Metric2> ma = inputMetrics, mb = inputMetrics;
+  const ImproveStats sa = improveQuality(a, ma, field, {.qThreshold = 0.95}), sb = improveQuality(b, mb, field, {.qThreshold = 0.95});
+  ASSERT_GT(sa.collapses, 0);
+  a.requireValid("improved", 1.0);
+  EXPECT_TRUE(sameBoundary(a, input));
+  EXPECT_GE(sa.qMinAfter, sa.qMinBefore);
+  EXPECT_EQ(a.vertices, b.vertices);
+  EXPECT_EQ(a.triangles, b.triangles);
+  ASSERT_EQ(ma.size(), std::size_t(a.numVertices()));
+  for (std::size_t v = 0; v < ma.size(); ++v) {
+    EXPECT_EQ(ma[v].m11(), mb[v].m11());
+    EXPECT_EQ(ma[v].m12(), mb[v].m12());
+    EXPECT_EQ(ma[v].m22(), mb[v].m22());
+    // Every vertex carries the field's metric at its (possibly new) position: the input had
+    // the field's metric everywhere, moved and merged vertices get field.at(new position).
+    const Metric2 expected = field.at(a.vertices[v]);
+    EXPECT_NEAR(ma[v].m11(), expected.m11(), 1e-12 * expected.m11()) << "vertex " << v;
+    EXPECT_NEAR(ma[v].m22(), expected.m22(), 1e-12 * expected.m22()) << "vertex " << v;
+  }
+  EXPECT_EQ(sa.collapses, sb.collapses);
+  EXPECT_EQ(sa.qMinAfter, sb.qMinAfter);
+}
+
 TEST(Improve, RandomPerturbedMeshesStayValidAndNeverGetWorse) {
+  long collapses = 0;
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
@@ -256,10 +369,14 @@ TEST(Improve, RandomPerturbedMeshesStayValidAndNeverGetWorse) {
     const auto v = mesh.validate(1.0, 1e-9);
     ASSERT_TRUE(v.ok) << "seed " << seed << ": " << v.firstProblem;
     EXPECT_TRUE(sameBoundary(mesh, before)) << "seed " << seed;
-    EXPECT_EQ(mesh.numVertices(), before.numVertices());
+    EXPECT_EQ(mesh.numVertices(), before.numVertices() - s.collapses) << "seed " << seed;
+    EXPECT_EQ(mesh.numTriangles(), before.numTriangles() - 2 * s.collapses) << "seed " << seed;
+    ASSERT_EQ(metrics.size(), std::size_t(mesh.numVertices())) << "seed " << seed;
     EXPECT_GE(s.qMinAfter, s.qMinBefore) << "seed " << seed;
     EXPECT_DOUBLE_EQ(s.qMinAfter, minQuality(mesh, metrics)) << "seed " << seed;
+    collapses += s.collapses;
   }
+  EXPECT_GT(collapses, 0);  // not vacuous: the collapses were exercised
 }
 
 TEST(Improve, NothingBelowTheThresholdLeavesTheMeshAlone) {
@@ -299,9 +416,10 @@ TEST(Improve, MeshDomainRunsItAndReportsIt) {
   EXPECT_EQ(a.stats.improve.passes, 0);
   EXPECT_EQ(a.stats.improve.swaps + a.stats.improve.moves, 0);
   b.mesh.requireValid("meshDomain", 1.0);
-  EXPECT_EQ(b.mesh.numVertices(), a.mesh.numVertices());
-  EXPECT_TRUE(sameBoundary(b.mesh, a.mesh));
   const ImproveStats& s = b.stats.improve;
+  EXPECT_EQ(b.mesh.numVertices(), a.mesh.numVertices() - s.collapses);
+  ASSERT_EQ(b.metric.size(), std::size_t(b.mesh.numVertices()));
+  EXPECT_TRUE(sameBoundary(b.mesh, a.mesh));
   EXPECT_GT(s.badBefore, 0);
   EXPECT_GT(s.swaps + s.moves, 0);
   EXPECT_DOUBLE_EQ(s.qMinBefore, minQuality(a.mesh, a.metric));
