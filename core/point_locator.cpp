@@ -41,6 +41,13 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
   return nb;
 }
 
+/// floor(r) clamped to [0, n − 1], clamped as a double first: a cell ratio beyond int's range
+/// (a point far outside, a mesh of extreme aspect ratio, NaN) is undefined behaviour to
+/// convert. NaN gives 0.
+int clampedCell(double r, int n) {
+  return r >= 0 ? int(std::min(std::floor(r), double(n - 1))) : 0;
+}
+
 } // namespace
 
 PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighboursOf(mesh)) {
@@ -52,24 +59,24 @@ PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighbo
   const Vec2 ext = (hi - lo).cwiseMax(1e-300);
   const double cells = std::max(1.0, mesh.numTriangles() / 2.0);
   const double side = std::sqrt(ext.x() * ext.y() / cells);
-  nx_ = std::clamp(int(ext.x() / side) + 1, 1, 4096);
-  ny_ = std::clamp(int(ext.y() / side) + 1, 1, 4096);
+  nx_ = clampedCell(ext.x() / side, 4096) + 1;
+  ny_ = clampedCell(ext.y() / side, 4096) + 1;
   lo_ = lo;
   cellSize_ = Vec2(ext.x() / nx_, ext.y() / ny_);
   cellTriangle_.assign(std::size_t(nx_) * ny_, -1);
   for (int t = 0; t < mesh.numTriangles(); ++t) {
     const auto& tr = mesh.triangles[t];
     const Vec2 c = (mesh.vertices[tr[0]] + mesh.vertices[tr[1]] + mesh.vertices[tr[2]]) / 3.0;
-    const int i = std::clamp(int((c.x() - lo_.x()) / cellSize_.x()), 0, nx_ - 1);
-    const int j = std::clamp(int((c.y() - lo_.y()) / cellSize_.y()), 0, ny_ - 1);
+    const int i = clampedCell((c.x() - lo_.x()) / cellSize_.x(), nx_);
+    const int j = clampedCell((c.y() - lo_.y()) / cellSize_.y(), ny_);
     int& slot = cellTriangle_[std::size_t(j) * nx_ + i];
     if (slot < 0) slot = t;
   }
 }
 
 int PointLocator::startTriangle(const Vec2& p) const {
-  const int i0 = std::clamp(int(std::floor((p.x() - lo_.x()) / cellSize_.x())), 0, nx_ - 1);
-  const int j0 = std::clamp(int(std::floor((p.y() - lo_.y()) / cellSize_.y())), 0, ny_ - 1);
+  const int i0 = clampedCell((p.x() - lo_.x()) / cellSize_.x(), nx_);
+  const int j0 = clampedCell((p.y() - lo_.y()) / cellSize_.y(), ny_);
   for (int ring = 0; ring < std::max(nx_, ny_); ++ring)
     for (int j = j0 - ring; j <= j0 + ring; ++j)
       for (int i = i0 - ring; i <= i0 + ring; ++i) {
