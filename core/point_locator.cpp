@@ -77,14 +77,23 @@ PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighbo
 int PointLocator::startTriangle(const Vec2& p) const {
   const int i0 = clampedCell((p.x() - lo_.x()) / cellSize_.x(), nx_);
   const int j0 = clampedCell((p.y() - lo_.y()) / cellSize_.y(), ny_);
-  for (int ring = 0; ring < std::max(nx_, ny_); ++ring)
-    for (int j = j0 - ring; j <= j0 + ring; ++j)
-      for (int i = i0 - ring; i <= i0 + ring; ++i) {
-        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
-        if (std::max(std::abs(i - i0), std::abs(j - j0)) != ring) continue;
-        const int t = cellTriangle_[std::size_t(j) * nx_ + i];
-        if (t >= 0) return t;
+  // Rings of cells around (i0, j0), each in row-major order (j, then i ascending): the first
+  // and last rows of a ring whole, the rows between only at i0 ± ring. Only cells of the ring
+  // that lie in the grid are visited, so a search costs O(cells), not O(ring³) (a 4096 × 1 grid
+  // of a mesh with an extreme aspect ratio took seconds per point).
+  const auto at = [&](int i, int j) { return cellTriangle_[std::size_t(j) * nx_ + i]; };
+  for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
+    const int iLo = std::max(i0 - ring, 0), iHi = std::min(i0 + ring, nx_ - 1);
+    for (int j = std::max(j0 - ring, 0); j <= std::min(j0 + ring, ny_ - 1); ++j) {
+      if (j == j0 - ring || j == j0 + ring) {
+        for (int i = iLo; i <= iHi; ++i)
+          if (at(i, j) >= 0) return at(i, j);
+      } else {
+        if (i0 - ring >= 0 && at(i0 - ring, j) >= 0) return at(i0 - ring, j);
+        if (i0 + ring < nx_ && at(i0 + ring, j) >= 0) return at(i0 + ring, j);
       }
+    }
+  }
   return 0;
 }
 
