@@ -99,7 +99,12 @@ ProblemSetup problemFromJson(const json& config, const std::string& src) {
         params[k] = v.get<double>();
       }
     }
-    const fem::TestProblem tp = fem::makeProblem(p.get<std::string>(), params);
+    fem::TestProblem tp;
+    try {
+      tp = fem::makeProblem(p.get<std::string>(), params);
+    } catch (const InputError& e) {
+      throw InputError(src + ": " + e.what());  // name the file, as every other error here does
+    }
     s.problem = tp.poisson();
     s.exact = tp.exact();
     s.domain = tp.domain;

@@ -41,6 +41,13 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
   return nb;
 }
 
+/// floor(r) clamped to [0, n − 1], clamped as a double first: a cell ratio beyond int's range
+/// (a point far outside, a mesh of extreme aspect ratio, NaN) is undefined behaviour to
+/// convert. NaN gives 0.
+int clampedCell(double r, int n) {
+  return r >= 0 ? int(std::min(std::floor(r), double(n - 1))) : 0;
+}
+
 } // namespace
 
 PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighboursOf(mesh)) {
@@ -52,32 +59,41 @@ PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighbo
   const Vec2 ext = (hi - lo).cwiseMax(1e-300);
   const double cells = std::max(1.0, mesh.numTriangles() / 2.0);
   const double side = std::sqrt(ext.x() * ext.y() / cells);
-  nx_ = std::clamp(int(ext.x() / side) + 1, 1, 4096);
-  ny_ = std::clamp(int(ext.y() / side) + 1, 1, 4096);
+  nx_ = clampedCell(ext.x() / side, 4096) + 1;
+  ny_ = clampedCell(ext.y() / side, 4096) + 1;
   lo_ = lo;
   cellSize_ = Vec2(ext.x() / nx_, ext.y() / ny_);
   cellTriangle_.assign(std::size_t(nx_) * ny_, -1);
   for (int t = 0; t < mesh.numTriangles(); ++t) {
     const auto& tr = mesh.triangles[t];
     const Vec2 c = (mesh.vertices[tr[0]] + mesh.vertices[tr[1]] + mesh.vertices[tr[2]]) / 3.0;
-    const int i = std::clamp(int((c.x() - lo_.x()) / cellSize_.x()), 0, nx_ - 1);
-    const int j = std::clamp(int((c.y() - lo_.y()) / cellSize_.y()), 0, ny_ - 1);
+    const int i = clampedCell((c.x() - lo_.x()) / cellSize_.x(), nx_);
+    const int j = clampedCell((c.y() - lo_.y()) / cellSize_.y(), ny_);
     int& slot = cellTriangle_[std::size_t(j) * nx_ + i];
     if (slot < 0) slot = t;
   }
 }
 
 int PointLocator::startTriangle(const Vec2& p) const {
-  const int i0 = std::clamp(int(std::floor((p.x() - lo_.x()) / cellSize_.x())), 0, nx_ - 1);
-  const int j0 = std::clamp(int(std::floor((p.y() - lo_.y()) / cellSize_.y())), 0, ny_ - 1);
-  for (int ring = 0; ring < std::max(nx_, ny_); ++ring)
-    for (int j = j0 - ring; j <= j0 + ring; ++j)
-      for (int i = i0 - ring; i <= i0 + ring; ++i) {
-        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
-        if (std::max(std::abs(i - i0), std::abs(j - j0)) != ring) continue;
-        const int t = cellTriangle_[std::size_t(j) * nx_ + i];
-        if (t >= 0) return t;
+  const int i0 = clampedCell((p.x() - lo_.x()) / cellSize_.x(), nx_);
+  const int j0 = clampedCell((p.y() - lo_.y()) / cellSize_.y(), ny_);
+  // Rings of cells around (i0, j0), each in row-major order (j, then i ascending): the first
+  // and last rows of a ring whole, the rows between only at i0 ± ring. Only cells of the ring
+  // that lie in the grid are visited, so a search costs O(cells), not O(ring³) (a 4096 × 1 grid
+  // of a mesh with an extreme aspect ratio took seconds per point).
+  const auto at = [&](int i, int j) { return cellTriangle_[std::size_t(j) * nx_ + i]; };
+  for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
+    const int iLo = std::max(i0 - ring, 0), iHi = std::min(i0 + ring, nx_ - 1);
+    for (int j = std::max(j0 - ring, 0); j <= std::min(j0 + ring, ny_ - 1); ++j) {
+      if (j == j0 - ring || j == j0 + ring) {
+        for (int i = iLo; i <= iHi; ++i)
+          if (at(i, j) >= 0) return at(i, j);
+      } else {
+        if (i0 - ring >= 0 && at(i0 - ring, j) >= 0) return at(i0 - ring, j);
+        if (i0 + ring < nx_ && at(i0 + ring, j) >= 0) return at(i0 + ring, j);
       }
+    }
+  }
   return 0;
 }
 

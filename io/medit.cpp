@@ -206,7 +206,13 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
       const auto at = [&] { return name + ":" + std::to_string(firstLine) + ": "; };
       if (types[0] == 1) {
         ABLMG_REQUIRE(v[0] > 0, at() << "size of vertex " << i + 1 << " is " << v[0] << ", must be > 0");
-        out.push_back(Metric2::isotropic(v[0]));
+        // A size so small or large that 1/h² (or h²) over- or underflows (1e-200, 1e200) has
+        // no SPD tensor: the error names the line, not only Metric2's "metric: sizes ...".
+        try {
+          out.push_back(Metric2::isotropic(v[0]));
+        } catch (const InputError&) {
+          ABLMG_REQUIRE(false, at() << "size of vertex " << i + 1 << " is " << v[0] << ": its tensor 1/h² is not representable");
+        }
       } else {
         double m11 = v[0], m12 = v[1], m22 = v[2];
         if (dim == 3) {

@@ -1,6 +1,8 @@
-# io/config tests: cli/config.cpp and cli/mesh_output.cpp are not in a library, so test_io compiles them in.
+# io/config tests: cli/config.cpp, cli/mesh_output.cpp and cli/problem_config.cpp are not in a
+# library, so test_io compiles them in.
 if(TARGET test_io)
-  target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp)
+  target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp
+                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp)
 endif()
 
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line

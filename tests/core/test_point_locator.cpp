@@ -89,6 +89,24 @@ TEST(PointLocator, WalkAroundAReentrantCornerFromAFarHint) {
   EXPECT_FALSE(locator.locate(Vec2(0.8, 0.2), hint).inside);
 }
 
+TEST(PointLocator, ExtremeAspectRatioAndFarPointsStayInTheGrid) {
+  // Found by fuzz_medit_mesh: a valid two-triangle square with one vertex at x = 1.2e42 made
+  // the grid's cell count ext.x / side ≈ 1e21, converted to int before it was clamped
+  // (undefined behaviour, caught by UBSan); so did any query point far outside the mesh. On the
+  // 4096 × 1 grid that follows, the start-triangle search then visited whole squares of cells
+  // per ring, O(ring³): 5 s per located point; now a few thousand cells.
+  Mesh2 m;
+  m.vertices = {{0, 0}, {1.2e42, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const PointLocator locator(m);
+  for (const Vec2& p : {Vec2(0.5, 0.5), Vec2(1e300, -1e300), Vec2(-1e300, 1e300), Vec2(6e41, 0.1)}) {
+    const auto loc = locator.locate(p);
+    ASSERT_GE(loc.triangle, 0);
+    ASSERT_LT(loc.triangle, m.numTriangles());
+    EXPECT_NEAR(loc.bary[0] + loc.bary[1] + loc.bary[2], 1.0, 1e-9);
+  }
+}
+
 TEST(BackgroundMetricField, ReproducesConstantAndInterpolatesLogEuclidean) {
   const Mesh2 m = grid(10, 3);
   const Metric2 c = Metric2::fromSizes(0.3, 0.01, 0.4);

@@ -277,6 +277,14 @@ TEST(Medit, HugeCountDoesNotAllocate) {
                    {"huge.mesh:4:", "more than the file can hold"});
 }
 
+TEST(Medit, ScalarSizeWithoutARepresentableTensorNamesTheLine) {
+  // 1/h² overflows (h = 1e-200) or h² does (h = 1e200): no SPD tensor. The error used to be
+  // Metric2's "metric: sizes (...) give a tensor that is not numerically SPD", with no file:line.
+  for (const char* h : {"1e-200", "1e200"})
+    expectInputError([h] { io::parseSol(std::string("MeshVersionFormatted 2\nSolAtVertices\n2\n1 1\n0.5\n") + h + "\nEnd\n", "tiny.sol"); },
+                     {"tiny.sol:6: size of vertex 2 is", "not representable"});
+}
+
 // Fuzz-like: every prefix and random byte corruptions of valid files either parse or throw
 // InputError (never crash, never another exception type).
 TEST(Medit, TruncatedAndGarbledInputsOnlyThrowInputError) {

@@ -1,0 +1,11 @@
+MeshVersionFormatted 2
+Dimension 2
+SolAtVertices
+5
+1 1
+0.1
+0.1
+-0.2
+0.1
+0.1
+End
