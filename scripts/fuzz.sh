@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (clang; fuzz/fuzz_<name>.cpp) and runs each for a fixed budget on
 # its seed corpus (tests/fuzz_corpus/<name>/, copied to a scratch corpus so the repository is not
 # modified), as many at a time as there are cores.
-#   bash scripts/fuzz.sh                              # 20 s per target (what .ci/run does)
+#   bash scripts/fuzz.sh                              # 30 s per target (what .ci/run does)
 #   FUZZ_SECONDS=3600 bash scripts/fuzz.sh            # a long run: one hour per target
 #   FUZZ_SECONDS=600 bash scripts/fuzz.sh medit_sol poly   # only these targets
 # A failing input leaves crash-*/timeout-*/oom-* files in build-fuzz/findings/<name>/ and the
@@ -11,7 +11,7 @@
 # before fixing it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds=${FUZZ_SECONDS:-20}
+seconds=${FUZZ_SECONDS:-30}
 jobs=${FUZZ_JOBS:-$(nproc)}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DABLMG_FUZZ=ON \
   -DBUILD_TESTING=OFF -DABLMG_BUILD_BENCH=OFF > /dev/null

@@ -14,7 +14,7 @@ packages=(
   libbenchmark-dev     # bench/
   libmuparser-dev      # metric and surface expressions in x,y / u,v (core)
   libcairo2-dev        # PNG pictures of bubbles, meshes, convergence plots (io)
-  clang libclang-rt-14-dev  # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
+  clang libclang-rt-14-dev libomp-dev  # libFuzzer targets in fuzz/ (scripts/fuzz.sh; clang's OpenMP)
 )
 missing=()
 for p in "${packages[@]}"; do

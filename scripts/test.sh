@@ -4,7 +4,7 @@
 #   2. Release build + all CTest tests (unit tests, CLI tests, examples at small size),
 #   3. an AddressSanitizer + UndefinedBehaviorSanitizer build running the unit tests
 #      (set ABLMG_SKIP_SANITIZE=1 to skip it locally),
-#   4. every libFuzzer target for FUZZ_SECONDS (default 20) each, as many at a time as there are
+#   4. every libFuzzer target for FUZZ_SECONDS (default 30) each, as many at a time as there are
 #      cores (scripts/fuzz.sh; ABLMG_SKIP_FUZZ=1 skips).
 set -euo pipefail
 cd "$(dirname "$0")/.."
