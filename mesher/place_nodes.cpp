@@ -126,6 +126,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
                                                                              << options.mass << ", " << options.damping);
   ABLMG_REQUIRE(options.metricLag >= 0 && options.metricLag <= 0.5,
                 "placeNodes: metricLag must be in [0, 0.5] (metric units), got " << options.metricLag);
+  ABLMG_REQUIRE(options.finalRelaxSteps >= 0, "placeNodes: finalRelaxSteps must be >= 0, got " << options.finalRelaxSteps);
   ABLMG_REQUIRE(options.plateauSteps >= 0 && options.plateauGain >= 0,
                 "placeNodes: need plateauSteps >= 0 and plateauGain >= 0; got " << options.plateauSteps << ", "
                                                                                << options.plateauGain);
@@ -207,6 +208,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   // at convergence: the same edge statistics for ~25 % fewer steps (ring 273–404 instead of
   // 433–478).
   int defectPassesLeft = options.defectPasses;
+  int lastEdit = -1;  // step after which the last population edit or defect kick was made
+  int stopAt = -1;    // ≥ 0: relaxing before an early stop, which comes at this step
   int lastDefectStep = -1;
   auto annealDefects = [&](int step) {
     t = Clock::now();
@@ -224,6 +227,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       ++st.defectPasses;
     }
     if (moved > 0) {
+      lastEdit = step;
       adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
       sys.clearMoved();
       sys.wakeAll();
@@ -236,7 +240,18 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     st.secondsDefects += since(t);
     return moved > 0;
   };
+  // Early stops (stall, plateau) never cut off right after an edit: the nodes just inserted,
+  // the holes of the ones just deleted and the kicked neighbourhoods get finalRelaxSteps
+  // steps without further edits first (stopAt).
+  auto stopEarly = [&](int step) {
+    if (lastEdit < 0 || step - lastEdit >= options.finalRelaxSteps) return true;
+    stopAt = lastEdit + options.finalRelaxSteps;
+    populationSettled = true;  // no more population passes
+    defectPassesLeft = 0;
+    return false;
+  };
   for (int step = 0; step < options.maxSteps; ++step) {
+    if (stopAt >= 0 && step >= stopAt) break;
     if (step > 0) {
       t = Clock::now();
       residual = sys.computeForces(adj, p);
@@ -262,13 +277,13 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     // Stall rule: the residual must halve within stallSteps steps of each mark, else the run
     // stops (some metrics from solvers have no equilibrium within tolerance: a few bubbles
     // where M varies by ~100 % per metric unit keep jolting). Population passes go on meanwhile.
-    if (options.stallSteps > 0) {
+    if (options.stallSteps > 0 && stopAt < 0) {
       if (stallMarkStep < 0 || residual < 0.5 * stallMark) {
         stallMark = residual;
         stallMarkStep = step;
       } else if (step - stallMarkStep >= options.stallSteps) {
         st.stalled = true;
-        break;
+        if (stopEarly(step)) break;
       }
     }
     // Quality plateau (the paper's "less simulation when lower quality is acceptable"): the
@@ -276,7 +291,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     // population is (nearly) settled, a share that gained < plateauGain over the last
     // plateauSteps steps, while the residual has not halved either, means more steps would
     // only polish a stuck packing.
-    if (options.plateauSteps > 0 && step % 10 == 0) {
+    if (options.plateauSteps > 0 && step % 10 == 0 && stopAt < 0) {
       t = Clock::now();
       shares.push_back(unitPairShare(sys, adj));
       st.secondsDynamics += since(t);
@@ -285,7 +300,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
           shares.back() - shares[shares.size() - 1 - std::size_t(back)] < options.plateauGain &&
           step - stallMarkStep >= options.plateauSteps) {
         st.qualityPlateau = true;
-        break;
+        if (stopEarly(step)) break;
       }
     }
     t = Clock::now();
@@ -308,6 +323,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       st.deleted += c.deleted;
       st.secondsPopulation += since(t);
       if (c.inserted + c.deleted > 0) {
+        lastEdit = step;
         t = Clock::now();
         adj = patchAdjacency(adj, c.map, c.firstNew, sys.referencePositions(), sys.metrics(), options.adjacencyRadius);
         st.secondsAdjacency += since(t);

@@ -81,6 +81,11 @@ struct PlacementOptions {
   /// adaptive loop since session 5 (adapt/adaptive_loop.hpp: a third less remesh time on the
   /// wave front; the quality post-pass, improve.hpp, takes care of the worst triangles).
   int plateauSteps = 0;
+  /// When the stall or plateau rule fires fewer than this many steps after the last
+  /// population edit or defect kick, the run goes on without edits until that many steps have
+  /// passed since it. Without it, the boundary-layer remesh (tanh((y − 0.5)/0.01), cycle 6,
+  /// -hgrad -1) stalled one step after a pass that had inserted and deleted ~550 nodes each.
+  int finalRelaxSteps = 10;
   double plateauGain = 0.002;  ///< share gain (0.002 = 0.2 point) that counts as progress
   /// A bubble's metric is evaluated again once it has moved this far (metric units) from where
   /// it was last evaluated; the output metrics are exact. Under a background mesh the
