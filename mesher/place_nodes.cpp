@@ -3,6 +3,7 @@
 
 #include "core/error.hpp"
 #include "mesher/adjacency.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/bubble_system.hpp"
 #include "mesher/defects.hpp"
 #include "mesher/initial_placement.hpp"
@@ -95,7 +96,7 @@ void zOrder(NodeSet& nodes, int first) {
   }
 }
 
-/// Share of neighbour pairs (w < 1.3, w the force's harmonic metric distance of eq. 8) whose
+/// Share of neighbour pairs (w < 1.3, w the force's pair distance, bubble_force.hpp) whose
 /// w is within ±10 % of 1: the packing's edge-length statistic, cheap enough every 10 steps.
 /// Integer counts: deterministic for any thread count.
 double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
@@ -108,9 +109,9 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
     for (int j : adj.neighbours(i)) {
       if (j <= i) continue;
       const Vec2 d = x[j] - x[i];
-      const double a = std::sqrt(m[i].squaredLength(d)), b = std::sqrt(m[j].squaredLength(d));
-      if (!(a > 0 && b > 0)) continue;
-      const double w = 2.0 * a * b / (a + b);
+      const double a2 = m[i].squaredLength(d), b2 = m[j].squaredLength(d);
+      if (!(a2 > 0 && b2 > 0)) continue;
+      const double w = pairDistance(a2, b2);
       if (w >= 1.3) continue;
       ++near;
       unit += std::abs(w - 1.0) <= 0.1;
