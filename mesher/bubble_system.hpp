@@ -23,6 +23,7 @@
 /// Deterministic and thread-count independent: forces are computed per node from the
 /// positions at the start of the step (no cross-thread reductions), then all nodes move.
 #include "core/metric_field.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/initial_placement.hpp"
 #include "mesher/node_set.hpp"
 
@@ -32,6 +33,7 @@ namespace ablmg::mesher {
 
 struct DynamicsParams {
   double k0 = 1.0, mass = 1.0, damping = 0.35, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
+  PairDistance pairDistance = PairDistance::Averaged;      ///< w of the pair force (bubble_force.hpp)
 };
 
 class BubbleSystem {

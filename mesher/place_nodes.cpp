@@ -99,7 +99,7 @@ void zOrder(NodeSet& nodes, int first) {
 /// Share of neighbour pairs (w < 1.3, w the force's pair distance, bubble_force.hpp) whose
 /// w is within ±10 % of 1: the packing's edge-length statistic, cheap enough every 10 steps.
 /// Integer counts: deterministic for any thread count.
-double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
+double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDistance kind) {
   const auto& x = sys.nodes().positions;
   const auto& m = sys.metrics();
   const int n = sys.size();
@@ -111,7 +111,7 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
       const Vec2 d = x[j] - x[i];
       const double a2 = m[i].squaredLength(d), b2 = m[j].squaredLength(d);
       if (!(a2 > 0 && b2 > 0)) continue;
-      const double w = pairDistance(a2, b2);
+      const double w = pairDistance(a2, b2, kind);
       if (w >= 1.3) continue;
       ++near;
       unit += std::abs(w - 1.0) <= 0.1;
@@ -173,7 +173,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   st.secondsAdjacency += since(t);
 
   // 2. Dynamics (§3.2) interleaved with population control (§3.4).
-  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep};
+  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep, options.pairDistance};
   PopulationOptions pop;
   pop.target = st.predictedNodes;
   const int popEvery = 10;
@@ -294,7 +294,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     // only polish a stuck packing.
     if (options.plateauSteps > 0 && step % 10 == 0 && stopAt < 0) {
       t = Clock::now();
-      shares.push_back(unitPairShare(sys, adj));
+      shares.push_back(unitPairShare(sys, adj, options.pairDistance));
       st.secondsDynamics += since(t);
       const int back = (options.plateauSteps + 9) / 10;  // window in samples
       if ((populationSettled || plateauMayStart) && int(shares.size()) > back &&

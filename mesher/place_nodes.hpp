@@ -31,6 +31,7 @@
 /// number of threads (no floating reductions across threads; nothing random is drawn).
 #include "core/domain.hpp"
 #include "core/metric_field.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/initial_placement.hpp"
 #include "mesher/node_set.hpp"
 
@@ -54,6 +55,9 @@ struct PlacementOptions {
   /// Set damping = 3.8429, timeStep = 0.02 for the paper's own run.
   double damping = 0.35;      ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
+  /// w of the pair force: the eq. (3) averaged-metric length (default), or eq. (8)'s harmonic
+  /// mean; bubble_force.hpp has the measurements (mesh quality vs the layer's H1 error).
+  PairDistance pairDistance = PairDistance::Averaged;
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 100; ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
   int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit

@@ -46,6 +46,9 @@ TEST(BubbleForce, PairDistanceIsTheAveragedMetricLength) {
   const double a2 = mi.squaredLength(d), b2 = mj.squaredLength(d);
   EXPECT_NEAR(pairDistance(a2, b2), average(mi, mj).length(d), 1e-12);  // eq. (3)
   EXPECT_NEAR(pairDistance(0.81, 0.81), 0.9, 1e-15);                    // equal metrics: the length
+  EXPECT_NEAR(pairDistance(0.81, 0.81, PairDistance::Harmonic), 0.9, 1e-15);
+  EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Harmonic), 1.0, 1e-15);  // a = 0.6, b = 3: at rest
+  EXPECT_NEAR(pairDistance(0.36, 9.0), std::sqrt(4.68), 1e-15);              // … an edge of length 2.16
 }
 
 TEST(BubbleForce, MeshOfAJumpyLayerMetricHasShortEdgesAndFewRepairs) {
@@ -63,8 +66,11 @@ TEST(BubbleForce, MeshOfAJumpyLayerMetricHasShortEdgesAndFewRepairs) {
   o.placement.plateauGain = 0.01;
   const MeshResult r = meshDomain(d, m, o);
   ASSERT_TRUE(r.mesh.validate().ok);
-  const std::vector<double> l = edgeMetricLengths(r.mesh, r.metric);
-  const EdgeLengthStats s = edgeLengthStats(l);
+  const EdgeLengthStats s = edgeLengthStats(edgeMetricLengths(r.mesh, r.metric));
   EXPECT_GT(s.inSqrt2, 0.98);
   EXPECT_LT(double(r.stats.connect.repairedTriangles), 0.015 * r.mesh.numTriangles());
+  o.placement.pairDistance = PairDistance::Harmonic;
+  const MeshResult h = meshDomain(d, m, o);
+  ASSERT_TRUE(h.mesh.validate().ok);
+  EXPECT_LT(edgeLengthStats(edgeMetricLengths(h.mesh, h.metric)).inSqrt2, s.inSqrt2 - 0.005);
 }
