@@ -93,6 +93,7 @@ const std::vector<Binding<PlacementOptions>>& placementBindings() {
       {"stallSteps", &PlacementOptions::stallSteps},
       {"plateauSteps", &PlacementOptions::plateauSteps},
       {"plateauGain", &PlacementOptions::plateauGain},
+      {"finalRelaxSteps", &PlacementOptions::finalRelaxSteps},
       {"metricLag", &PlacementOptions::metricLag},
       {"defectPasses", &PlacementOptions::defectPasses},
       {"defectEvery", &PlacementOptions::defectEvery},

@@ -52,7 +52,12 @@ public:
   /// Whether pred(id) holds for some id in cells overlapping the box [p − r, p + r]
   /// (incremental form); stops at the first one.
   template <class Pred> bool anyIncremental(const Vec2& p, double r, Pred&& pred) const {
-    const int x0 = cellX(p.x() - r), x1 = cellX(p.x() + r), y0 = cellY(p.y() - r), y1 = cellY(p.y() + r);
+    return anyIncremental(p, r, r, pred);
+  }
+  /// The same over the box p ± (rx, ry): an anisotropic query (the bounding box of a thin
+  /// metric ellipse) visits far fewer cells than the square of its long half-axis.
+  template <class Pred> bool anyIncremental(const Vec2& p, double rx, double ry, Pred&& pred) const {
+    const int x0 = cellX(p.x() - rx), x1 = cellX(p.x() + rx), y0 = cellY(p.y() - ry), y1 = cellY(p.y() + ry);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
         for (int id = head_[y * nx_ + x]; id >= 0; id = next_[id])

@@ -18,14 +18,6 @@ namespace {
 /// which kMinParallelItems left on one thread below 2048 rows.
 constexpr int kMinParallelRows = 128;
 
-/// Half-widths (x, y) of the bounding box of {d : dᵀ M d ≤ r²}: r·√((M⁻¹)₁₁), r·√((M⁻¹)₂₂).
-/// If the averaged metric distance of a pair is ≤ r then the smaller of |d|_{M_i}, |d|_{M_j}
-/// is ≤ r, so every pair lies in the box of one of its two nodes.
-Vec2 reachBox(const Metric2& m, double r) {
-  const double det = std::max(m.det(), 1e-300);
-  return {r * std::sqrt(m.m22() / det), r * std::sqrt(m.m11() / det)};
-}
-
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
 /// does not depend on the thread count). rowFn(i, out) appends row i to out.

@@ -7,6 +7,8 @@
 #include "core/metric2.hpp"
 #include "mesher/node_set.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 
 namespace ablmg::mesher {
@@ -14,6 +16,14 @@ namespace ablmg::mesher {
 /// The adjacency criterion above.
 inline bool withinMetricRadius(const Vec2& d, const Metric2& mi, const Metric2& mj, double radius) {
   return 0.5 * (mi.squaredLength(d) + mj.squaredLength(d)) <= radius * radius;
+}
+
+/// Half-widths (x, y) of the bounding box of {d : dᵀ M d ≤ r²}: r·√((M⁻¹)₁₁), r·√((M⁻¹)₂₂).
+/// If the averaged metric distance of a pair is ≤ r then the smaller of |d|_{M_i}, |d|_{M_j}
+/// is ≤ r, so every pair lies in the box of one of its two nodes.
+inline Vec2 reachBox(const Metric2& m, double r) {
+  const double det = std::max(m.det(), 1e-300);
+  return {r * std::sqrt(m.m22() / det), r * std::sqrt(m.m11() / det)};
 }
 
 /// Built from scratch with a bucket grid (cells ≈ mean node spacing; node i scans the bounding

@@ -150,13 +150,14 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
 [[gnu::always_inline]] inline bool BubbleSystem::pairTerm(const Vec2& xi, const Metric2& mi, int j, const DynamicsParams& p, Vec2& term) const {
   const Vec2 d = nodes_.positions[j] - xi;
   const double a2 = mi.squaredLength(d), b2 = metrics_[j].squaredLength(d);
-  // w ≥ min(a, b) (harmonic mean), so min(a², b²) > 1.5² means no force; also d = 0.
-  if (!(a2 > 0 && b2 > 0) || std::min(a2, b2) > 2.25) return false;
-  const double a = std::sqrt(a2), b = std::sqrt(b2);
-  const double w = 2.0 * a * b / (a + b);  // l / l0 with l0 = l_ij + l_ji, eq. (8)
+  // w > 1.5 (no force) once a² + b² > 2·1.5² (averaged) or min(a², b²) > 1.5² (harmonic,
+  // which is ≥ min(a, b)); also d = 0.
+  const bool harmonic = p.pairDistance == PairDistance::Harmonic;
+  if (!(a2 > 0 && b2 > 0) || (harmonic ? std::min(a2, b2) > 2.25 : a2 + b2 > 4.5)) return false;
+  const double w = pairDistance(a2, b2, p.pairDistance);  // bubble_force.hpp: eq. (3) by default, not eq. (8)
   const double fw = interBubbleForce(w, p.k0);
   if (fw == 0.0) return false;
-  // eq. (8): l0 = l_ij + l_ji = l/(2a) + l/(2b) = l/w, so the pair force fw·l0·d/l = (fw/w)·d
+  // The rest length l0 = l/w (one metric unit along d), so the pair force fw·l0·d/l = (fw/w)·d
   // needs neither l = |d| nor l0.
   term = (fw / w) * d;
   return true;

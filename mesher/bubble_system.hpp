@@ -2,11 +2,13 @@
 /// The bubble system of paper §3.2: state and one forward-Euler step of m ẍ + c ẋ = f (eq. 5).
 ///
 /// Units. The force of eq. (6)–(7) acts in metric-scaled length: the pair force on i is
-///   F_ij = −f(w_ij) · l0_ij · (x_j − x_i)/|x_j − x_i|,   w = l / l0,  l0 = l_ij + l_ji (eq. 8),
+///   F_ij = −f(w_ij) · l0_ij · (x_j − x_i)/|x_j − x_i|,   w = l / l0,
 /// i.e. f(w) metric units of displacement expressed in coordinates through the pair's rest
-/// length l0 (≈ one metric unit in that direction). Positions and velocities are stored in
+/// length l0 (one metric unit in that direction). Positions and velocities are stored in
 /// coordinates, so Δt, m, c, k0 are dimensionless and the §6 defaults work for any size h.
-/// In metric terms w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}), no trigonometry.
+/// In metric terms w = √((|d|²_{M_i} + |d|²_{M_j})/2), the eq. (3) length with the averaged
+/// tensor (pairDistance, bubble_force.hpp, says why not eq. (8)'s l0 = l_ij + l_ji, whose
+/// w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}) follows the coarse node where M jumps); no trigonometry.
 ///
 /// Constraints: Vertex nodes never move; Segment nodes feel only the bubbles of their own loop piece
 /// (the boundary is packed as a 1D chain first, so boundary edges keep unit metric length
@@ -21,6 +23,7 @@
 /// Deterministic and thread-count independent: forces are computed per node from the
 /// positions at the start of the step (no cross-thread reductions), then all nodes move.
 #include "core/metric_field.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/initial_placement.hpp"
 #include "mesher/node_set.hpp"
 
@@ -30,6 +33,7 @@ namespace ablmg::mesher {
 
 struct DynamicsParams {
   double k0 = 1.0, mass = 1.0, damping = 0.35, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
+  PairDistance pairDistance = PairDistance::Averaged;      ///< w of the pair force (bubble_force.hpp)
 };
 
 class BubbleSystem {

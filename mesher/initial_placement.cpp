@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/predicates.hpp"
+#include "mesher/adjacency.hpp"
 #include "mesher/parallel_threshold.hpp"
 
 #include <algorithm>
@@ -159,6 +160,19 @@ double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m,
   return best;
 }
 
+double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const {
+  double best = std::numeric_limits<double>::infinity();
+  grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(), [&](int id) {
+    const auto& poly = loops_[segs_[id].first];
+    const int k = segs_[id].second;
+    const Vec2& a = poly.points[k];
+    const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
+    const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
+    best = std::min(best, m.length(p - a - t * d));
+  });
+  return best;
+}
+
 double DomainGeometry::wrap(int l, double s) const {
   const double L = loops_[l].length;
   s = std::fmod(s, L);
@@ -294,14 +308,17 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   // A candidate c (metric m, largest size h1 of m) is kept if it is far enough from every
   // node, inside, and far enough from the walls; the cheapest test first (most lattice
   // candidates land on a node placed before).
-  auto acceptable = [&](const Vec2& c, const Metric2& m, double h1) {
+  // Both searches scan the bounding box of the metric ball (reachBox), not the square of its
+  // long half-axis h1: on a boundary-layer metric (anisotropy up to 10⁴) the square held
+  // ~10³ cells and this test took 0.4 s of a 1.8 s remesh.
+  auto acceptable = [&](const Vec2& c, const Metric2& m) {
     const double r2 = options.minNodeDistance * options.minNodeDistance;
-    const bool taken = grid.anyIncremental(c, options.minNodeDistance * h1,
+    const Vec2 reach = reachBox(m, options.minNodeDistance);
+    const bool taken = grid.anyIncremental(c, reach.x(), reach.y(),
                                            [&](int q) { return m.squaredLength(nodes.positions[q] - c) < r2; });
     if (taken || !geo.inside(c)) return false;
-    return geo.metricDistanceToBoundary(c, m, options.minWallDistance * h1) >= options.minWallDistance;
+    return geo.metricDistanceToBoundary(c, m, reachBox(m, options.minWallDistance)) >= options.minWallDistance;
   };
-  auto acceptableAlone = [&](const Vec2& c, const Metric2& m) { return acceptable(c, m, m.eigen().h1); };
   auto add = [&](const Vec2& c, const Metric2& m) {
     const int id = nodes.size();
     nodes.positions.push_back(c);
@@ -333,7 +350,7 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
       const Eigen::Matrix2d s = latticeMap(e, options.orientation, options.alignRatio);
       for (const Vec2& d : dirs) {
         const Vec2 c = x + s * d;
-        if (acceptable(c, m, e.h1)) queue.push_back(add(c, metricAt(c)));
+        if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));
       }
     }
   };
@@ -344,12 +361,12 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
     if (constant) std::fill(sm.begin(), sm.end(), m0);
     else metric.evaluate(seeds, sm);
     for (std::size_t k = 0; k < seeds.size(); ++k)
-      if (acceptableAlone(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
+      if (acceptable(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
     grow();
   }
   for (const Vec2& probe : probes) {
     const Metric2 mp = metricAt(probe);
-    if (!acceptableAlone(probe, mp)) continue;
+    if (!acceptable(probe, mp)) continue;
     queue.assign(1, add(probe, mp));
     grow();
   }

@@ -51,6 +51,11 @@ public:
   /// min over boundary segments within Euclidean distance `searchRadius` of p of the metric
   /// (m) distance from p to the segment; +inf if none is that close.
   double metricDistanceToBoundary(const Vec2& p, const Metric2& m, double searchRadius) const;
+  /// min over boundary segments meeting the box p ± halfWidths of the metric (m) distance from
+  /// p to the segment; +inf if none. With halfWidths = reachBox(m, r) (adjacency.hpp) the
+  /// result is exact whenever it is < r, and the box of a thin ellipse (anisotropy 10⁴) is
+  /// ~10⁴× smaller than the disk of its long half-axis.
+  double metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const;
 
   /// Arc length s ∈ [0, L) of loop l (wrapped) → segment index, point, unit tangent.
   int segmentAt(int l, double s) const;

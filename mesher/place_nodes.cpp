@@ -3,6 +3,7 @@
 
 #include "core/error.hpp"
 #include "mesher/adjacency.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/bubble_system.hpp"
 #include "mesher/defects.hpp"
 #include "mesher/initial_placement.hpp"
@@ -95,10 +96,10 @@ void zOrder(NodeSet& nodes, int first) {
   }
 }
 
-/// Share of neighbour pairs (w < 1.3, w the force's harmonic metric distance of eq. 8) whose
+/// Share of neighbour pairs (w < 1.3, w the force's pair distance, bubble_force.hpp) whose
 /// w is within ±10 % of 1: the packing's edge-length statistic, cheap enough every 10 steps.
 /// Integer counts: deterministic for any thread count.
-double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
+double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDistance kind) {
   const auto& x = sys.nodes().positions;
   const auto& m = sys.metrics();
   const int n = sys.size();
@@ -108,9 +109,9 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj) {
     for (int j : adj.neighbours(i)) {
       if (j <= i) continue;
       const Vec2 d = x[j] - x[i];
-      const double a = std::sqrt(m[i].squaredLength(d)), b = std::sqrt(m[j].squaredLength(d));
-      if (!(a > 0 && b > 0)) continue;
-      const double w = 2.0 * a * b / (a + b);
+      const double a2 = m[i].squaredLength(d), b2 = m[j].squaredLength(d);
+      if (!(a2 > 0 && b2 > 0)) continue;
+      const double w = pairDistance(a2, b2, kind);
       if (w >= 1.3) continue;
       ++near;
       unit += std::abs(w - 1.0) <= 0.1;
@@ -126,6 +127,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
                                                                              << options.mass << ", " << options.damping);
   ABLMG_REQUIRE(options.metricLag >= 0 && options.metricLag <= 0.5,
                 "placeNodes: metricLag must be in [0, 0.5] (metric units), got " << options.metricLag);
+  ABLMG_REQUIRE(options.finalRelaxSteps >= 0, "placeNodes: finalRelaxSteps must be >= 0, got " << options.finalRelaxSteps);
   ABLMG_REQUIRE(options.plateauSteps >= 0 && options.plateauGain >= 0,
                 "placeNodes: need plateauSteps >= 0 and plateauGain >= 0; got " << options.plateauSteps << ", "
                                                                                << options.plateauGain);
@@ -171,7 +173,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   st.secondsAdjacency += since(t);
 
   // 2. Dynamics (§3.2) interleaved with population control (§3.4).
-  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep};
+  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep, options.pairDistance};
   PopulationOptions pop;
   pop.target = st.predictedNodes;
   const int popEvery = 10;
@@ -207,6 +209,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   // at convergence: the same edge statistics for ~25 % fewer steps (ring 273–404 instead of
   // 433–478).
   int defectPassesLeft = options.defectPasses;
+  int lastEdit = -1;  // step after which the last population edit or defect kick was made
+  int stopAt = -1;    // ≥ 0: relaxing before an early stop, which comes at this step
   int lastDefectStep = -1;
   auto annealDefects = [&](int step) {
     t = Clock::now();
@@ -224,6 +228,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       ++st.defectPasses;
     }
     if (moved > 0) {
+      lastEdit = step;
       adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
       sys.clearMoved();
       sys.wakeAll();
@@ -236,7 +241,18 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     st.secondsDefects += since(t);
     return moved > 0;
   };
+  // Early stops (stall, plateau) never cut off right after an edit: the nodes just inserted,
+  // the holes of the ones just deleted and the kicked neighbourhoods get finalRelaxSteps
+  // steps without further edits first (stopAt).
+  auto stopEarly = [&](int step) {
+    if (lastEdit < 0 || step - lastEdit >= options.finalRelaxSteps) return true;
+    stopAt = lastEdit + options.finalRelaxSteps;
+    populationSettled = true;  // no more population passes
+    defectPassesLeft = 0;
+    return false;
+  };
   for (int step = 0; step < options.maxSteps; ++step) {
+    if (stopAt >= 0 && step >= stopAt) break;
     if (step > 0) {
       t = Clock::now();
       residual = sys.computeForces(adj, p);
@@ -262,13 +278,13 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     // Stall rule: the residual must halve within stallSteps steps of each mark, else the run
     // stops (some metrics from solvers have no equilibrium within tolerance: a few bubbles
     // where M varies by ~100 % per metric unit keep jolting). Population passes go on meanwhile.
-    if (options.stallSteps > 0) {
+    if (options.stallSteps > 0 && stopAt < 0) {
       if (stallMarkStep < 0 || residual < 0.5 * stallMark) {
         stallMark = residual;
         stallMarkStep = step;
       } else if (step - stallMarkStep >= options.stallSteps) {
         st.stalled = true;
-        break;
+        if (stopEarly(step)) break;
       }
     }
     // Quality plateau (the paper's "less simulation when lower quality is acceptable"): the
@@ -276,16 +292,16 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     // population is (nearly) settled, a share that gained < plateauGain over the last
     // plateauSteps steps, while the residual has not halved either, means more steps would
     // only polish a stuck packing.
-    if (options.plateauSteps > 0 && step % 10 == 0) {
+    if (options.plateauSteps > 0 && step % 10 == 0 && stopAt < 0) {
       t = Clock::now();
-      shares.push_back(unitPairShare(sys, adj));
+      shares.push_back(unitPairShare(sys, adj, options.pairDistance));
       st.secondsDynamics += since(t);
       const int back = (options.plateauSteps + 9) / 10;  // window in samples
       if ((populationSettled || plateauMayStart) && int(shares.size()) > back &&
           shares.back() - shares[shares.size() - 1 - std::size_t(back)] < options.plateauGain &&
           step - stallMarkStep >= options.plateauSteps) {
         st.qualityPlateau = true;
-        break;
+        if (stopEarly(step)) break;
       }
     }
     t = Clock::now();
@@ -308,6 +324,7 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       st.deleted += c.deleted;
       st.secondsPopulation += since(t);
       if (c.inserted + c.deleted > 0) {
+        lastEdit = step;
         t = Clock::now();
         adj = patchAdjacency(adj, c.map, c.firstNew, sys.referencePositions(), sys.metrics(), options.adjacencyRadius);
         st.secondsAdjacency += since(t);

@@ -31,6 +31,7 @@
 /// number of threads (no floating reductions across threads; nothing random is drawn).
 #include "core/domain.hpp"
 #include "core/metric_field.hpp"
+#include "mesher/bubble_force.hpp"
 #include "mesher/initial_placement.hpp"
 #include "mesher/node_set.hpp"
 
@@ -54,6 +55,9 @@ struct PlacementOptions {
   /// Set damping = 3.8429, timeStep = 0.02 for the paper's own run.
   double damping = 0.35;      ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
+  /// w of the pair force: the eq. (3) averaged-metric length (default), or eq. (8)'s harmonic
+  /// mean; bubble_force.hpp has the measurements (mesh quality vs the layer's H1 error).
+  PairDistance pairDistance = PairDistance::Averaged;
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 100; ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
   int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
@@ -81,6 +85,11 @@ struct PlacementOptions {
   /// adaptive loop since session 5 (adapt/adaptive_loop.hpp: a third less remesh time on the
   /// wave front; the quality post-pass, improve.hpp, takes care of the worst triangles).
   int plateauSteps = 0;
+  /// When the stall or plateau rule fires fewer than this many steps after the last
+  /// population edit or defect kick, the run goes on without edits until that many steps have
+  /// passed since it. Without it, the boundary-layer remesh (tanh((y − 0.5)/0.01), cycle 6,
+  /// -hgrad -1) stalled one step after a pass that had inserted and deleted ~550 nodes each.
+  int finalRelaxSteps = 10;
   double plateauGain = 0.002;  ///< share gain (0.002 = 0.2 point) that counts as progress
   /// A bubble's metric is evaluated again once it has moved this far (metric units) from where
   /// it was last evaluated; the output metrics are exact. Under a background mesh the

@@ -2,6 +2,7 @@
 #include "mesher/parallel_threshold.hpp"
 
 #include "core/bucket_grid.hpp"
+#include "mesher/adjacency.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -125,7 +126,7 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       for (int j : adj.neighbours(i)) dmin2 = std::min(dmin2, mi.squaredLength(nodes.positions[j] - cand));
       const double dmin = std::sqrt(std::max(0.0, dmin2));  // = min of Metric2::length
       if (dmin < minGap) continue;
-      if (!geo.inside(cand) || geo.metricDistanceToBoundary(cand, mi, 0.5 * e.h1) < 0.5) continue;
+      if (!geo.inside(cand) || geo.metricDistanceToBoundary(cand, mi, reachBox(mi, 0.5)) < 0.5) continue;
       candGap[slot] = dmin;
     }
   }

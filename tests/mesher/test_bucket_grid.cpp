@@ -44,6 +44,24 @@ TEST(BucketGrid, IncrementalMatchesStaticAndClampsOutsidePoints) {
   EXPECT_EQ(total, 5);
 }
 
+TEST(BucketGrid, IncrementalBoxQueryFindsEveryPointInAThinBox) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec2> pts(3000);
+  for (auto& p : pts) p = Vec2(u(rng), u(rng));
+  BucketGrid g(Vec2(0, 0), Vec2(1, 1), 0.02);
+  g.clearIncremental();
+  for (int i = 0; i < int(pts.size()); ++i) g.insert(i, pts[i]);
+  for (int q = 0; q < 200; ++q) {
+    const Vec2 c(u(rng), u(rng));
+    const double rx = q % 2 ? 0.3 : 1e-4, ry = q % 2 ? 1e-4 : 0.3;  // anisotropy 3·10³ either way
+    const auto inBox = [&](int id) { return std::abs(pts[id].x() - c.x()) <= rx && std::abs(pts[id].y() - c.y()) <= ry; };
+    bool want = false;
+    for (int i = 0; i < int(pts.size()); ++i) want = want || inBox(i);
+    EXPECT_EQ(g.anyIncremental(c, rx, ry, inBox), want) << "query " << q;
+  }
+}
+
 TEST(BucketGrid, CellCountIsCapped) {
   BucketGrid g(Vec2(0, 0), Vec2(1000, 1000), 1e-3, 10000);
   EXPECT_LE(long(g.nx()) * g.ny(), 10000);

@@ -1,6 +1,7 @@
 #include "mesher/initial_placement.hpp"
 
 #include "core/error.hpp"
+#include "mesher/adjacency.hpp"
 
 #include <gtest/gtest.h>
 
@@ -59,6 +60,63 @@ TEST(DomainGeometry, ArcParametrisation) {
   EXPECT_DOUBLE_EQ(geo.indexArc(0, 2.5), 1.5);
   EXPECT_TRUE(geo.tangentAt(0, 3.5).isApprox(Vec2(-1, 0)));
   EXPECT_NEAR(geo.metricDistanceToBoundary({1, 0.3}, Metric2::isotropic(0.1), 1.0), 3.0, 1e-12);
+}
+
+TEST(DomainGeometry, BoxDistanceToBoundaryIsExactBelowItsRadius) {
+  // The reach-box form (initial placement's wall test) agrees with the disk form whenever
+  // either is below r, for metrics of anisotropy up to 10⁴ in any direction.
+  for (int s = 0; s < 4; ++s) {
+    const Domain d = starWithHole(s, s % 2);
+    const DomainGeometry geo(d);
+    const auto [lo, hi] = geo.boundingBox();
+    std::mt19937 rng(s);
+    std::uniform_real_distribution<double> ux(lo.x(), hi.x()), uy(lo.y(), hi.y()), ut(0, std::numbers::pi);
+    std::uniform_real_distribution<double> ue(0, 4);
+    for (int q = 0; q < 2000; ++q) {
+      const Vec2 p(ux(rng), uy(rng));
+      const double h1 = 0.5 * std::pow(10.0, -0.5 * ue(rng) / 4), h2 = h1 * std::pow(10.0, -ue(rng));
+      const Metric2 m = Metric2::fromSizes(h1, h2, ut(rng));
+      const double r = 0.55;
+      const double disk = geo.metricDistanceToBoundary(p, m, r * h1);
+      const double box = geo.metricDistanceToBoundary(p, m, reachBox(m, r));
+      EXPECT_EQ(disk < r, box < r) << "point " << q;
+      if (disk < r) {
+        EXPECT_EQ(disk, box) << "point " << q;
+      }
+    }
+  }
+}
+
+TEST(InitialPlacement, ThinLayerLatticeKeepsItsSpacingRules) {
+  // A boundary-layer metric of anisotropy up to 2·10³ (sizes 0.2 × 10⁻⁴ at y = 0.5, the long
+  // axis turning with x): the reach-box searches keep the lattice's rules. Every interior node
+  // is inside and at least 0.55 from the walls in its parent's metric, hence ≥ 0.4 in its own
+  // here; the nearest neighbour of most nodes is at ≈ 1 (60 % here: seams where fronts meet);
+  // the count is near N*.
+  const Domain d = Domain::rectangle(0, 0, 1, 1);
+  const DomainGeometry geo(d);
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, "0.2", "1e-4 + 0.05*abs(y-0.5)^1.5", "0.02*x");
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, m, nodes, arc);
+  const int nb = nodes.size();
+  const long predicted = predictedNodeCount(metricArea(d, geo, m, 256), nb, 0);
+  placeInteriorNodes(geo, m, nodes, std::sqrt(1.0 / double(predicted)));
+  EXPECT_GT(nodes.size(), 0.85 * double(predicted));
+  EXPECT_LT(nodes.size(), 1.15 * double(predicted));
+  std::vector<Metric2> ms(std::size_t(nodes.size()));
+  m.evaluate(nodes.positions, ms);
+  int unitNearest = 0;
+  for (int i = nb; i < nodes.size(); ++i) {
+    ASSERT_TRUE(geo.inside(nodes.positions[i])) << i;
+    EXPECT_GE(geo.metricDistanceToBoundary(nodes.positions[i], ms[i], 10.0), 0.4) << i;
+    double best = 1e300;
+    for (int j = 0; j < nodes.size(); ++j)
+      if (j != i) best = std::min(best, ms[i].squaredLength(nodes.positions[j] - nodes.positions[i]));
+    ASSERT_GT(best, 0.0) << i;
+    unitNearest += std::sqrt(best) > 0.7 && std::sqrt(best) < 1.2;
+  }
+  EXPECT_GT(unitNearest, 0.5 * (nodes.size() - nb));
 }
 
 TEST(InitialPlacement, BoundaryPiecesHaveEqualMetricLength) {
