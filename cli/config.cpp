@@ -330,6 +330,16 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       }
       placement.erase("latticeOrientation");
     }
+    if (placement.contains("pairDistance")) {
+      const Where wp = w / "placement" / "pairDistance";
+      const std::string name = getString(placement["pairDistance"], wp);
+      try {
+        options.placement.pairDistance = mesher::parsePairDistance(name);
+      } catch (const InputError& e) {
+        ABLMG_REQUIRE(false, wp.str() << ": " << e.what());
+      }
+      placement.erase("pairDistance");
+    }
     applyBindings(placement, options.placement, placementBindings(), w / "placement");
   }
   if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
@@ -346,6 +356,7 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
   json placement = bindingsToJson(options.placement, placementBindings());
   placement["latticeOrientation"] = mesher::latticeOrientationName(options.placement.lattice.orientation);
+  placement["pairDistance"] = mesher::pairDistanceName(options.placement.pairDistance);
   return {{"placement", placement},
           {"connect", bindingsToJson(options.connect, connectBindings())},
           {"improve", bindingsToJson(options.improve, improveBindings())}};

@@ -8,6 +8,7 @@
 #include "core/metric2.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace ablmg::mesher {
 
@@ -18,35 +19,37 @@ inline double interBubbleForce(double w, double k0 = 1.0) {
   return k0 * ((1.25 * w - 2.375) * w * w + 1.125);
 }
 
-/// w, the pair's distance in units of its rest length, from a² = |d|²_{M_i} and b² = |d|²_{M_j}:
-/// the eq. (3) length with the averaged tensor, w = √((a² + b²)/2), where eq. (8) gives
-/// l / (l_ij + l_ji) = 2ab/(a + b), the harmonic mean. Both are a + O((a − b)²) for a smooth
-/// metric, but where M jumps the harmonic mean follows the coarse node: at rest (w = 1) with
-/// b = 5a it leaves a = 0.6, b = 3 and an edge of eq. (3) length 2.2, beyond the adjacency
-/// radius 1.7, so the connection has no link for it and repairs its triangles. With the
-/// averaged-metric w the packing rests where the mesh is measured (quality.hpp): remeshing the
-/// tanh((y − 0.5)/0.01) layer to its cycle-6 metric without gradation (anisotropy up to 10⁴),
-/// edges in [1/√2, √2] 98.0 → 99.1 %, within ±10 % 78.6 → 85.7 %, repaired triangles
-/// 865 → 556; the remesh benchmark (scripts/bench_remesh.sh) ring 90.6 → 90.8 %, wave front
-/// 93.7 → 94.7 % within ±10 %; the paper disks stay within their run-to-run spread over
-/// damping 0.33–0.37 (line 92.2–92.9 → 92.3–93.2 %, ring 90.6–91.3 → 90.3–91.5 %).
-/// The price, measured on the adaptive tanh layer (`ablmg adapt --problem tanhlayer`, targets
-/// 250 … 32000, three schedules): the H1 error of the last cycle is 8–15 % higher than with the
-/// harmonic mean (8.90e-3 → 1.02e-2 on the README schedule), L2 mixed; Mitchell's wave front
-/// (16 cycles to 1.1·10⁵ vertices) is unchanged (H1 1.745e-2 → 1.740e-2). Harmonic keeps
-/// eq. (8) for such comparisons.
+/// w, the pair's distance in units of its rest length, from a² = |d|²_{M_i} and b² = |d|²_{M_j}.
+/// Eq. (8) (the default, the paper's force): w = l / (l_ij + l_ji) = 2ab/(a + b), the harmonic
+/// mean. The option: the eq. (3) length with the averaged tensor, w = √((a² + b²)/2). Both are
+/// a + O((a − b)²) for a smooth metric, but where M jumps the harmonic mean follows the coarse
+/// node: at rest (w = 1) with b = 5a it leaves a = 0.6, b = 3 and an edge of eq. (3) length
+/// 2.2, beyond the adjacency radius 1.7, so the connection has no link for it and repairs its
+/// triangles. With the averaged w the packing rests where the mesh is measured (quality.hpp).
+/// Measured (session 7, helper-20): remeshing the tanh((y − 0.5)/0.01) layer to its cycle-6
+/// metric without gradation (anisotropy up to 10⁴), averaged instead of eq. (8): edges in
+/// [1/√2, √2] 98.0 → 99.1 %, within ±10 % 78.6 → 85.7 %, repaired triangles 865 → 556; the
+/// remesh benchmark (scripts/bench_remesh.sh) ring 90.6 → 90.8 %, wave front 93.7 → 94.7 %
+/// within ±10 %; the paper disks within their run-to-run spread. But on the adaptive tanh layer
+/// (`ablmg adapt --problem tanhlayer`, targets 250 … 32000, three schedules) the H1 error of the
+/// last cycle is 8–15 % higher with it (8.90e-3 → 1.02e-2), L2 mixed; Mitchell's wave front
+/// (16 cycles to 1.1·10⁵ vertices) is unchanged (H1 1.745e-2 → 1.740e-2). So eq. (8) stays the
+/// default; `"pairDistance": "averaged"` (PlacementOptions) suits metrics with jumps.
 enum class PairDistance {
-  Averaged,  ///< √((a² + b²)/2), eq. (3) (default)
-  Harmonic,  ///< 2ab/(a + b), eq. (8): l / (l_ij + l_ji)
+  Harmonic,  ///< 2ab/(a + b), eq. (8): l / (l_ij + l_ji) (default)
+  Averaged,  ///< √((a² + b²)/2), eq. (3) with the averaged tensor
 };
 /// w from a² and b² (see above); a², b² > 0.
-inline double pairDistance(double a2, double b2, PairDistance kind = PairDistance::Averaged) {
+inline double pairDistance(double a2, double b2, PairDistance kind = PairDistance::Harmonic) {
   if (kind == PairDistance::Harmonic) {
     const double a = std::sqrt(a2), b = std::sqrt(b2);
     return 2.0 * a * b / (a + b);
   }
   return std::sqrt(0.5 * (a2 + b2));
 }
+/// "eq8" / "averaged" ↔ PairDistance; parse throws InputError naming the valid names.
+PairDistance parsePairDistance(const std::string& name);
+const char* pairDistanceName(PairDistance kind);
 
 /// l_ij of eq. (8): distance (coordinate units) from x_i to the boundary of bubble i along d = x_j − x_i ≠ 0.
 inline double bubbleRadius(const Metric2& mi, const Vec2& d) { return 0.5 * mi.ellipseRadius(d); }

@@ -1,6 +1,7 @@
 #include "mesher/bubble_system.hpp"
 #include "mesher/parallel_threshold.hpp"
 
+#include "core/error.hpp"
 #include "mesher/bubble_force.hpp"
 
 #include <omp.h>
@@ -154,7 +155,7 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   // which is ≥ min(a, b)); also d = 0.
   const bool harmonic = p.pairDistance == PairDistance::Harmonic;
   if (!(a2 > 0 && b2 > 0) || (harmonic ? std::min(a2, b2) > 2.25 : a2 + b2 > 4.5)) return false;
-  const double w = pairDistance(a2, b2, p.pairDistance);  // bubble_force.hpp: eq. (3) by default, not eq. (8)
+  const double w = pairDistance(a2, b2, p.pairDistance);  // bubble_force.hpp: eq. (8) by default
   const double fw = interBubbleForce(w, p.k0);
   if (fw == 0.0) return false;
   // The rest length l0 = l/w (one metric unit along d), so the pair force fw·l0·d/l = (fw/w)·d
@@ -529,5 +530,14 @@ void BubbleSystem::kick(int i) {
   active_[i] = 1;
   kicked_[i] = 1;
 }
+
+PairDistance parsePairDistance(const std::string& name) {
+  if (name == "eq8") return PairDistance::Harmonic;
+  if (name == "averaged") return PairDistance::Averaged;
+  ABLMG_REQUIRE(false, "pair distance: expected eq8 or averaged, got '" << name << "'");
+  return PairDistance::Harmonic;
+}
+
+const char* pairDistanceName(PairDistance kind) { return kind == PairDistance::Averaged ? "averaged" : "eq8"; }
 
 } // namespace ablmg::mesher

@@ -6,9 +6,8 @@
 /// i.e. f(w) metric units of displacement expressed in coordinates through the pair's rest
 /// length l0 (one metric unit in that direction). Positions and velocities are stored in
 /// coordinates, so Δt, m, c, k0 are dimensionless and the §6 defaults work for any size h.
-/// In metric terms w = √((|d|²_{M_i} + |d|²_{M_j})/2), the eq. (3) length with the averaged
-/// tensor (pairDistance, bubble_force.hpp, says why not eq. (8)'s l0 = l_ij + l_ji, whose
-/// w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}) follows the coarse node where M jumps); no trigonometry.
+/// In metric terms eq. (8)'s w = 2 / (1/|d|_{M_i} + 1/|d|_{M_j}), or optionally the eq. (3)
+/// length with the averaged tensor (pairDistance, bubble_force.hpp); no trigonometry.
 ///
 /// Constraints: Vertex nodes never move; Segment nodes feel only the bubbles of their own loop piece
 /// (the boundary is packed as a 1D chain first, so boundary edges keep unit metric length
@@ -33,7 +32,7 @@ namespace ablmg::mesher {
 
 struct DynamicsParams {
   double k0 = 1.0, mass = 1.0, damping = 0.35, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
-  PairDistance pairDistance = PairDistance::Averaged;      ///< w of the pair force (bubble_force.hpp)
+  PairDistance pairDistance = PairDistance::Harmonic;      ///< w of the pair force (bubble_force.hpp)
 };
 
 class BubbleSystem {

@@ -55,9 +55,9 @@ struct PlacementOptions {
   /// Set damping = 3.8429, timeStep = 0.02 for the paper's own run.
   double damping = 0.35;      ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
-  /// w of the pair force: the eq. (3) averaged-metric length (default), or eq. (8)'s harmonic
-  /// mean; bubble_force.hpp has the measurements (mesh quality vs the layer's H1 error).
-  PairDistance pairDistance = PairDistance::Averaged;
+  /// w of the pair force: eq. (8) (default, the paper's), or the eq. (3) averaged-metric
+  /// length; bubble_force.hpp has the measurements (mesh quality vs the layer's H1 error).
+  PairDistance pairDistance = PairDistance::Harmonic;
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
   int adjacencyRefresh = 100; ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
   int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit

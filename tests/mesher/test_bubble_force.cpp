@@ -1,6 +1,7 @@
 #include "mesher/bubble_force.hpp"
 
 #include "core/domain.hpp"
+#include "core/error.hpp"
 #include "core/metric_field.hpp"
 #include "mesher/mesher.hpp"
 #include "mesher/quality.hpp"
@@ -40,15 +41,19 @@ TEST(BubbleForce, Eq8RadiusIsHalfTheUnitEllipse) {
   EXPECT_NEAR(restLength(bubbleRadius(m, d), bubbleRadius(m, -d)), d.norm(), 1e-12);
 }
 
-TEST(BubbleForce, PairDistanceIsTheAveragedMetricLength) {
+TEST(BubbleForce, PairDistanceEq8OrTheAveragedMetricLength) {
   const Metric2 mi = Metric2::fromSizes(0.3, 0.01, 0.2), mj = Metric2::fromSizes(0.1, 0.002, 0.25);
   const Vec2 d(0.05, 0.004);
   const double a2 = mi.squaredLength(d), b2 = mj.squaredLength(d);
-  EXPECT_NEAR(pairDistance(a2, b2), average(mi, mj).length(d), 1e-12);  // eq. (3)
-  EXPECT_NEAR(pairDistance(0.81, 0.81), 0.9, 1e-15);                    // equal metrics: the length
+  EXPECT_NEAR(pairDistance(a2, b2, PairDistance::Averaged), average(mi, mj).length(d), 1e-12);  // eq. (3)
+  EXPECT_NEAR(pairDistance(0.81, 0.81, PairDistance::Averaged), 0.9, 1e-15);  // equal metrics: the length
   EXPECT_NEAR(pairDistance(0.81, 0.81, PairDistance::Harmonic), 0.9, 1e-15);
   EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Harmonic), 1.0, 1e-15);  // a = 0.6, b = 3: at rest
-  EXPECT_NEAR(pairDistance(0.36, 9.0), std::sqrt(4.68), 1e-15);              // … an edge of length 2.16
+  EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Averaged), std::sqrt(4.68), 1e-15);  // … an edge of length 2.16
+  EXPECT_EQ(pairDistance(0.36, 9.0), pairDistance(0.36, 9.0, PairDistance::Harmonic));        // eq. (8) is the default
+  EXPECT_EQ(parsePairDistance("averaged"), PairDistance::Averaged);
+  EXPECT_STREQ(pairDistanceName(parsePairDistance("eq8")), "eq8");
+  EXPECT_THROW(parsePairDistance("mean"), ablmg::InputError);
 }
 
 TEST(BubbleForce, MeshOfAJumpyLayerMetricHasShortEdgesAndFewRepairs) {
@@ -64,6 +69,7 @@ TEST(BubbleForce, MeshOfAJumpyLayerMetricHasShortEdgesAndFewRepairs) {
   MeshOptions o;
   o.placement.plateauSteps = 10;
   o.placement.plateauGain = 0.01;
+  o.placement.pairDistance = PairDistance::Averaged;
   const MeshResult r = meshDomain(d, m, o);
   ASSERT_TRUE(r.mesh.validate().ok);
   const EdgeLengthStats s = edgeLengthStats(edgeMetricLengths(r.mesh, r.metric));
