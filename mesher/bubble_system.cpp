@@ -295,7 +295,10 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         double s = s_[i] + p.dt * vt;
         const double margin = std::isfinite(sLo_[i]) ? 1e-4 * (sHi_[i] - sLo_[i]) : 0.0;
         if (s <= sLo_[i] + margin || s >= sHi_[i] - margin) {
-          s = std::clamp(s, sLo_[i] + margin, sHi_[i] - margin);
+          // Halfway from where it was to the corner's margin, not onto it: two nodes pushed into
+          // the same corner in one step would otherwise land on the same point (a duplicate
+          // the connection refuses); halving keeps distinct nodes distinct and in order.
+          s = s <= sLo_[i] + margin ? 0.5 * (s_[i] + sLo_[i] + margin) : 0.5 * (s_[i] + sHi_[i] - margin);
           vel_[i] = Vec2::Zero();
         } else {
           vel_[i] = vt * t;

@@ -53,6 +53,12 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(nearer_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"0.9999999999999\", \"m22\": \"1\"}}")
   add_test(NAME cli.hostile_nearer_singular_metric COMMAND ablmg mesh ${_hdir}/nearer_singular.json -o ${_hdir}/nearer_singular.mesh)
   set_tests_properties(cli.hostile_nearer_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles in" TIMEOUT 120)
+  # A metric whose long size jumps 16x every 0.075 along a 2e-4-thin layer pushed two boundary
+  # nodes into the same corner in one step; they landed on the same point and the connection
+  # refused the duplicate. Now a valid mesh (most of it repaired: the metric is far from smooth).
+  ablmg_hostile_config(corner_push "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"0.1*4^sin(2*pi*x/0.15)\", \"h2\": \"2e-4+0.05*abs(y-0.5)\", \"theta\": \"0\"}}")
+  add_test(NAME cli.hostile_boundary_nodes_pushed_into_a_corner COMMAND ablmg mesh ${_hdir}/corner_push.json -o ${_hdir}/corner_push.mesh)
+  set_tests_properties(cli.hostile_boundary_nodes_pushed_into_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 300)
 endif()
 # Non-finite values in a .sol (NaN, ±Inf, overflow), tensor and scalar: one error line naming file:line.
 if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp AND COMMAND ablmg_cli_failure)
