@@ -209,6 +209,7 @@ TEST(Remesh, EqualsTheCompositionTheCommandLineRan) {
   mesher::MeshOptions meshOptions;
   meshOptions.placement.plateauSteps = 10;
   meshOptions.placement.plateauGain = 0.01;
+  meshOptions.placement.finalRelaxSteps = 0;
   const mesher::MeshResult expected = mesher::meshDomain(domain, BackgroundMetricField(in, metric), meshOptions);
 
   RemeshOptions o;
