@@ -147,29 +147,24 @@ bool DomainGeometry::inside(const Vec2& p) const {
   return in;
 }
 
+double DomainGeometry::metricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const {
+  const auto& poly = loops_[segs_[id].first];
+  const int k = segs_[id].second;
+  const Vec2& a = poly.points[k];
+  const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
+  const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
+  return m.length(p - a - t * d);
+}
+
 double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, double searchRadius) const {
   double best = std::numeric_limits<double>::infinity();
-  grid_.forEach(p, searchRadius, [&](int id) {
-    const auto& poly = loops_[segs_[id].first];
-    const int k = segs_[id].second;
-    const Vec2& a = poly.points[k];
-    const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
-    const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
-    best = std::min(best, m.length(p - a - t * d));
-  });
+  grid_.forEach(p, searchRadius, [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
   return best;
 }
 
 double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const {
   double best = std::numeric_limits<double>::infinity();
-  grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(), [&](int id) {
-    const auto& poly = loops_[segs_[id].first];
-    const int k = segs_[id].second;
-    const Vec2& a = poly.points[k];
-    const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
-    const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
-    best = std::min(best, m.length(p - a - t * d));
-  });
+  grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(), [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
   return best;
 }
 

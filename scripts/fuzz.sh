@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang; fuzz/fuzz_<name>.cpp) and runs each for a fixed budget on
-# its seed corpus (tests/fuzz_corpus/<name>/, copied to a scratch corpus so the repository is not
+# its seed corpus (tests/fuzz_corpus/<name>/ plus the real input files of tests/data and
+# examples/configs it parses, copied to a scratch corpus so the repository is not
 # modified), as many at a time as there are cores.
 #   bash scripts/fuzz.sh                              # 30 s per target (what .ci/run does)
 #   FUZZ_SECONDS=3600 bash scripts/fuzz.sh            # a long run: one hour per target
@@ -29,6 +30,16 @@ fuzz_one() {
   mkdir -p "$work" "$findings"
   rm -f "$findings"/crash-* "$findings"/timeout-* "$findings"/oom-* "$findings"/leak-*
   [ -d "tests/fuzz_corpus/$name" ] && cp -r "tests/fuzz_corpus/$name/." "$work/"
+  # The repository's real input files are seeds too (kept in one place, not copied into the corpus).
+  local seeds=()
+  case $name in
+    medit_mesh) seeds=(tests/data/*.mesh) ;;
+    medit_sol) seeds=(tests/data/*.sol) ;;
+    poly) seeds=(tests/data/*.poly) ;;
+    config) seeds=(examples/configs/paper_*.json examples/configs/speed_*.json) ;;
+    problem) seeds=(examples/configs/adapt_*.json) ;;
+  esac
+  [ ${#seeds[@]} -eq 0 ] || cp "${seeds[@]}" "$work/"
   (cd "$findings" && "../../fuzz/fuzz_$name" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
      "../../../$work" > run.log 2>&1) || true
 }

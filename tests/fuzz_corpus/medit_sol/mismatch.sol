@@ -1,9 +1,0 @@
-MeshVersionFormatted 2
-Dimension 2
-SolAtVertices
-3
-1 1
-0.1
-0.1
-0.1
-End
