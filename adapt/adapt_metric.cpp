@@ -1,8 +1,8 @@
 // The mesher-free steps of the loop (adaptive_loop.hpp): metricQuality() and adaptMetric().
 // Kept apart from runAdaptiveLoop() so that they link and are tested without the mesher.
-#include "adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
 
-#include "adapt/convergence.hpp"
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
 
 #include <algorithm>
 #include <chrono>

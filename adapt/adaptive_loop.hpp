@@ -24,15 +24,15 @@
 /// mesh_k, t_solve = assembly + solve on it, t_recover/t_metric = building M_k from u_k (0 in
 /// the last cycle, where no next mesh is built). Times are wall seconds (steady clock), the
 /// only non-deterministic numbers in the report.
-#include "adapt/gradation.hpp"
-#include "adapt/hessian_recovery.hpp"
-#include "adapt/interpolation_error.hpp"
-#include "adapt/metric_from_hessian.hpp"
-#include "adapt/remesh.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/solve.hpp"
-#include "fem/test_problems.hpp"
-#include "mesher/mesher.hpp"
+#include "ablmg/adapt/gradation.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
+#include "ablmg/adapt/interpolation_error.hpp"
+#include "ablmg/adapt/metric_from_hessian.hpp"
+#include "ablmg/adapt/remesh.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/test_problems.hpp"
+#include "ablmg/mesher/mesher.hpp"
 #include <functional>
 #include <optional>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "adapt/convergence.hpp"
+#include "ablmg/adapt/convergence.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <cmath>
 

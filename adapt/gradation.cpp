@@ -1,6 +1,6 @@
-#include "adapt/gradation.hpp"
+#include "ablmg/adapt/gradation.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -14,8 +14,8 @@
 /// in the SPD order, so the sizes of M_j in any direction are at most (1 + |e|_{M_i} ln β)/√(1−tol)
 /// times those of M_i. Metrics only grow (sizes only shrink). A field that already satisfies
 /// the bound is returned bit-for-bit unchanged.
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 #include <span>
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "adapt/hessian_recovery.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>

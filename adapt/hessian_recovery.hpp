@@ -26,8 +26,8 @@
 ///    vertices included. It is smoother than LeastSquares (one more averaging) on noisy data.
 ///
 /// Deterministic; parallel over vertices (OpenMP), bitwise identical for any thread count.
-#include "core/mesh2.hpp"
-#include "core/vec2.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/vec2.hpp"
 #include <Eigen/Core>
 #include <span>
 #include <string>

@@ -1,6 +1,6 @@
-#include "adapt/interpolation_error.hpp"
+#include "ablmg/adapt/interpolation_error.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <array>
 #include <cmath>

@@ -13,8 +13,8 @@
 /// is quadratic on T and the recovery reproduces its Hessian (both recovery methods do,
 /// hessian_recovery.hpp); for smooth u it estimates l2Interp of fem/error_norms.hpp.
 /// Units: those of u times length.
-#include "adapt/hessian_recovery.hpp"
-#include "core/mesh2.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
+#include "ablmg/core/mesh2.hpp"
 
 #include <span>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "adapt/metric_from_hessian.hpp"
+#include "ablmg/adapt/metric_from_hessian.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>

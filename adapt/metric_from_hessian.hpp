@@ -60,9 +60,9 @@
 ///
 /// Integrals over Ω are computed on the given mesh: per triangle, area × mean of the three
 /// vertex values.
-#include "adapt/hessian_recovery.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 #include <limits>
 #include <optional>
 #include <span>

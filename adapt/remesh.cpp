@@ -1,7 +1,7 @@
-#include "adapt/remesh.hpp"
+#include "ablmg/adapt/remesh.hpp"
 
-#include "core/domain_from_mesh.hpp"
-#include "core/error.hpp"
+#include "ablmg/core/domain_from_mesh.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <chrono>

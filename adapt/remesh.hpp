@@ -9,7 +9,7 @@
 /// Usage, in a solver's loop (Remesh.TheHeadersSolverLoopRuns in tests/adapt/test_remesh.cpp
 /// runs it; examples/07_solver_in_the_loop.cpp is a loop with a real solver and a known domain):
 ///
-///   #include "adapt/remesh.hpp"
+///   #include "ablmg/adapt/remesh.hpp"
 ///   ablmg::Mesh2 mesh = myMesh();           // CCW triangles; boundaryEdges carry your refs
 ///   ablmg::adapt::RemeshOptions options;
 ///   options.hmin = 1e-4;                    // sizes in the mesh's length unit
@@ -23,11 +23,11 @@
 ///
 /// Errors are exceptions (ablmg::InputError for bad input, ablmg::Error if the mesher fails);
 /// nothing is printed or written. Same input and options (seed) ⇒ bit-identical output.
-#include "adapt/gradation.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/mesher.hpp"
+#include "ablmg/adapt/gradation.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
 #include <limits>
 #include <string>

@@ -2,12 +2,12 @@
 // methods), metric construction at a target complexity, gradation — on a perturbed uniform
 // mesh of the unit square carrying the wave-front solution's nodal interpolant.
 //   bench_adapt --benchmark_filter=Recovery
-#include "adapt/gradation.hpp"
-#include "adapt/hessian_recovery.hpp"
-#include "adapt/metric_from_hessian.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/adapt/gradation.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
+#include "ablmg/adapt/metric_from_hessian.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <benchmark/benchmark.h>
 

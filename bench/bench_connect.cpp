@@ -5,7 +5,7 @@
 //   OMP_NUM_THREADS=2 ./bench/bench_connect --benchmark_counters_tabular=true
 // Counters: nodes, triangles, repaired triangles, eq. (12) deletions and swaps, the two
 // phases (local meshes, scaffold + repair) and µs per node.
-#include "mesher/connect.hpp"
+#include "ablmg/mesher/connect.hpp"
 
 #include <benchmark/benchmark.h>
 

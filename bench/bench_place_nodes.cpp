@@ -7,7 +7,7 @@
 // a fast wrong answer (too few steps, no convergence) would show. The second argument is the
 // early-stopping knob PlacementOptions::relativeTolerance in units of 1e-3: 10 (the default,
 // a ×100 residual drop) and 100 (×10).
-#include "mesher/place_nodes.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -3,11 +3,11 @@
 // Dirichlet data, load by the degree-5 rule). Not a test: run by hand,
 //   ./bench/bench_poisson --benchmark_counters_tabular=true
 // Counters: unknowns, nonzeros, and the error so that a fast wrong answer would show.
-#include "fem/assemble.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/solve.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/fem/assemble.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <benchmark/benchmark.h>
 

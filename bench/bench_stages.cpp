@@ -12,11 +12,11 @@
 // and CHOLMOD solve of a manufactured problem on the mesh (fem "smooth"). The growth exponent
 // of a stage is the least-squares slope of log(time) against log(triangles) over the sizes,
 // and also between the two largest. scripts/bench.sh runs the whole suite.
-#include "fem/solve.hpp"
-#include "fem/test_problems.hpp"
-#include "io/medit.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/test_problems.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 #include <omp.h>

@@ -21,18 +21,18 @@
 // of the same N when --uniform on) and DIR/final_mesh.png; with --medit on also
 // DIR/cycle_K.mesh and DIR/cycle_K_metric.sol (the metric computed on mesh K for mesh K+1,
 // tensor m11 m12 m22). Prints the resolved options, one `Cycle k:` line per cycle, the rates.
-#include "adapt/adaptive_loop.hpp"
-#include "adapt/convergence.hpp"
-#include "cli/command.hpp"
-#include "cli/config.hpp"
-#include "cli/mesh_output.hpp"
-#include "cli/problem_config.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/cli/mesh_output.hpp"
+#include "ablmg/cli/problem_config.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/vtu.hpp"
 
 #include <nlohmann/json.hpp>
 

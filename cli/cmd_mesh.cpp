@@ -4,13 +4,13 @@
 // domain with ablmg::mesher::meshDomain (or only places the bubbles), writes the outputs
 // atomically and prints a one-line summary. Errors are exceptions: main() prints one line and
 // exits 1; outputs are written only after the mesh exists, so a failed run writes nothing.
-#include "cli/command.hpp"
-#include "cli/config.hpp"
-#include "cli/mesh_output.hpp"
-#include "cli/stats_json.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "mesher/mesher.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/cli/mesh_output.hpp"
+#include "ablmg/cli/stats_json.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -7,15 +7,15 @@
 // IN.o.mesh. Nothing is written if anything fails.
 // The remeshing itself is adapt::remesh (adapt/remesh.hpp); this file parses the flags into
 // its RemeshOptions, reads the files, calls it, writes the files and prints.
-#include "adapt/remesh.hpp"
-#include "cli/command.hpp"
-#include "cli/config.hpp"
-#include "cli/stats_json.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/adapt/remesh.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/cli/stats_json.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -17,16 +17,16 @@
 //                                                 — u_h as a medit scalar .sol — only if given)
 //   }
 // Expressions are muparser in x, y (constants pi, e).
-#include "cli/command.hpp"
-#include "cli/problem_config.hpp"
-#include "core/error.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/solve.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "io/vtu.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/problem_config.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/vtu.hpp"
 
 #include <nlohmann/json.hpp>
 

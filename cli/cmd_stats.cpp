@@ -13,13 +13,13 @@
 //
 // A file whose vertices all have z = 0 is a 2D mesh (Mesh2, validated with Mesh2::validate);
 // otherwise a 3D surface mesh (checked with checkManifold; elements measured by Lee's α).
-#include "cli/command.hpp"
-#include "cli/config.hpp"
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <nlohmann/json.hpp>
 

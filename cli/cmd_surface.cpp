@@ -18,18 +18,18 @@
 //    "options": {"placement": {...}, "connect": {...}}}         as in `ablmg mesh` configs
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
 // files are written only once the mesh exists, each atomically.
-#include "cli/command.hpp"
-#include "cli/config.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/stl.hpp"
-#include "io/surface_picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
-#include "mesher/surface.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/stl.hpp"
+#include "ablmg/io/surface_picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
+#include "ablmg/mesher/surface.hpp"
 
 #include <nlohmann/json.hpp>
 

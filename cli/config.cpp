@@ -1,8 +1,8 @@
-#include "cli/config.hpp"
+#include "ablmg/cli/config.hpp"
 
-#include "core/error.hpp"
-#include "io/medit.hpp"
-#include "io/poly.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/poly.hpp"
 
 #include <climits>
 #include <cmath>

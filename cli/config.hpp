@@ -22,9 +22,9 @@
 /// fields keep their defaults. Relative paths (poly, mesh, sol, outputs) are relative to the
 /// config file's directory. Unknown keys, wrong types and bad values are ablmg::InputError
 /// naming the file and key path: "config.json: metric.h1: expected string, got number".
-#include "core/domain.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/mesher.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 

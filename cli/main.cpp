@@ -2,8 +2,8 @@
 // (or other exception) into one line on stderr and exit code 1. Libraries never print.
 // Built twice (cli/CMakeLists.txt): ablmg-full has every command; ablmg, with ABLMG_FULL_PROGRAM
 // defined, has the light ones and hands everything else to ablmg-full (forwardToFullProgram).
-#include "cli/command.hpp"
-#include "core/error.hpp"
+#include "ablmg/cli/command.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <unistd.h>
 

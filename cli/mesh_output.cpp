@@ -1,10 +1,10 @@
-#include "cli/mesh_output.hpp"
+#include "ablmg/cli/mesh_output.hpp"
 
-#include "core/error.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,10 +3,10 @@
 /// chosen by the extension. Kept apart from cli/config.hpp because it is the one part of the
 /// mesh command that needs VTK and cairo: the light `ablmg` front end (cli/CMakeLists.txt)
 /// links config.cpp but not this file.
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
-#include "io/vtu.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/io/vtu.hpp"
 
 #include <span>
 #include <string>

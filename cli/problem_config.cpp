@@ -1,7 +1,7 @@
-#include "cli/problem_config.hpp"
+#include "ablmg/cli/problem_config.hpp"
 
-#include "core/error.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <muParser.h>
 

@@ -13,9 +13,9 @@
 /// (0.5, 0.5) when read. Expression functions share a parser object, so they are not thread-safe
 /// (PoissonProblem::threadSafeFunctions and ExactSolution::threadSafe stay false). Errors are
 /// ablmg::InputError naming `src` and the key path: "c.json: problem.f: bad expression ...".
-#include "core/domain.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/poisson_problem.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/poisson_problem.hpp"
 
 #include <nlohmann/json.hpp>
 

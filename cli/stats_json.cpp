@@ -1,4 +1,4 @@
-#include "cli/stats_json.hpp"
+#include "ablmg/cli/stats_json.hpp"
 
 namespace ablmg::cli {
 

@@ -1,7 +1,7 @@
 #pragma once
 /// The mesher's statistics as JSON, for the `--report` files of `ablmg mesh` and `ablmg remesh`
 /// (the keys are the C++ field names of mesher::PlacementStats, ConnectStats, ImproveStats).
-#include "mesher/mesher.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 

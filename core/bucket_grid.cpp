@@ -1,6 +1,6 @@
-#include "core/bucket_grid.hpp"
+#include "ablmg/core/bucket_grid.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 namespace ablmg {
 

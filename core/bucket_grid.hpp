@@ -7,7 +7,7 @@
 ///  - incremental (insert one id at a time; per-cell singly linked lists, newest first).
 /// Units: the coordinates' own. Points outside the box are clamped to the border cells, so
 /// every point has a cell; a query box is clamped the same way.
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
-#include "core/domain.hpp"
+#include "ablmg/core/domain.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
 #include <cmath>

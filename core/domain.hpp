@@ -10,7 +10,7 @@
 /// boundary turns by more than 30°) are fixed mesh vertices; the mesher places its own
 /// boundary nodes along the polyline. Otherwise every point is a corner and a mesh vertex.
 /// Units: the coordinates' own.
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
-#include "core/domain_from_mesh.hpp"
+#include "ablmg/core/domain_from_mesh.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,8 +1,8 @@
 #pragma once
 /// The domain a triangle mesh covers, rebuilt from its boundary: what remeshing needs when
 /// the caller has a mesh but no Domain (a solver's mesh, a .mesh file).
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
 
 #include <string>
 

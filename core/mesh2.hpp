@@ -8,7 +8,7 @@
 ///    boundary is closed and the mesh covers its domain once: no gaps, no overlaps;
 ///  - every vertex is used by a triangle; coordinates are finite.
 /// Ids are 0-based int; files (medit) are 1-based and io/ converts.
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <array>
 #include <optional>

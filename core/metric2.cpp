@@ -1,6 +1,6 @@
-#include "core/metric2.hpp"
+#include "ablmg/core/metric2.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
 

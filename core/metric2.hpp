@@ -10,7 +10,7 @@
 ///
 /// Invariant: every Metric2 that exists is SPD with finite entries; the factory functions
 /// throw ablmg::InputError otherwise (message names the values).
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <span>
 #include <string>

@@ -1,6 +1,6 @@
-#include "core/metric_field.hpp"
+#include "ablmg/core/metric_field.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <muParser.h>
 

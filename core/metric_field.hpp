@@ -13,9 +13,9 @@
 ///
 /// Thread safety: `at()` of an AnalyticMetricField is not thread-safe (muparser state);
 /// call `evaluate()` from one thread. The others are read-only and thread-safe.
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
-#include "core/point_locator.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/core/point_locator.hpp"
 
 #include <memory>
 #include <span>

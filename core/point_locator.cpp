@@ -1,6 +1,6 @@
-#include "core/point_locator.hpp"
+#include "ablmg/core/point_locator.hpp"
 
-#include "core/predicates.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 /// Points outside the mesh get the triangle of the boundary edge where the walk stopped and
 /// barycentric coordinates clamped to it (nearest-point extrapolation), with inside = false.
 /// The mesh must outlive the locator and must be valid (Mesh2::validate).
-#include "core/mesh2.hpp"
+#include "ablmg/core/mesh2.hpp"
 
 #include <array>
 #include <vector>

@@ -8,7 +8,7 @@
 /// most significant component has the sign of the exact result. Written here (about 60 lines)
 /// because Debian ships no small, maintained predicates library; CGAL would be a heavy
 /// dependency for two functions. Tested on near-degenerate inputs (tests/core/test_predicates).
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 namespace ablmg {
 

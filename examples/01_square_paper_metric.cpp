@@ -26,12 +26,12 @@
 //     4. the files: OUT.mesh (+ OUT.sol, the metric per vertex, for `ablmg stats`), OUT.vtu,
 //        OUT_mesh.png (triangles coloured by q) and OUT_bubbles.png (the packed ellipses).
 //   Exit status 1 if the mesh is not valid or the options are bad.
-#include "core/error.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -25,11 +25,11 @@
 //     5. OUT_<case>_bubbles.png (the packed ellipses, Fig. 13), OUT_<case>_mesh.png (Fig. 14,
 //        triangles coloured by q) and OUT_<case>.vtu.
 //   Exit status 1 if a mesh is invalid or the options are bad.
-#include "core/error.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -23,12 +23,12 @@
 //   Steps: 1. the loops, 2. the metric, 3. mesher::meshDomain, 4. quality and the number of
 //   boundary edges per tag, 5. OUT.mesh (+ OUT.sol), OUT.vtu, OUT_mesh.png, OUT_bubbles.png.
 //   Exit status 1 if the mesh is invalid or a tag is missing on the boundary.
-#include "core/error.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <algorithm>
 #include <cmath>

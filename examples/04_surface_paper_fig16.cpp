@@ -28,14 +28,14 @@
 //   instead, and the Table 2 line printed at the end compares with the paper at equal N.
 //   The same run from the command line: `ablmg surface --surface paper-fig16 --h 0.0594 ...`.
 //   Exit status 1 if the surface mesh is not a manifold or the options are bad.
-#include "core/error.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
-#include "io/surface_picture.hpp"
-#include "io/vtu.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
-#include "mesher/surface.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
+#include "ablmg/io/surface_picture.hpp"
+#include "ablmg/io/vtu.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
+#include "ablmg/mesher/surface.hpp"
 
 #include <cmath>
 #include <cstdio>

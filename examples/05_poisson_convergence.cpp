@@ -21,11 +21,11 @@
 //   feature (wave front α = 20 from about 64 × 64); the reentrant corner (`lshape`, u ∈ H^{5/3})
 //   is limited to 4/3 in L2 and 2/3 in H1 on uniform meshes: the motivation for adaptivity
 //   (example 06).
-#include "core/error.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/solve.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <cmath>
 #include <cstdio>

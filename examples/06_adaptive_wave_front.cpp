@@ -23,8 +23,8 @@
 //   H1 0.0625 and L2 1.6e-4 at 11.8k vertices, 0.0222 and 2.1e-5 at 94.8k, interpolated
 //   log-log to our vertex counts). Exit status 1 if the errors do not decrease.
 //   The same loop with files (CSV, JSON, .vtu per cycle, PNGs) is `ablmg adapt --problem wavefront`.
-#include "adapt/adaptive_loop.hpp"
-#include "core/error.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -30,10 +30,10 @@
 //   not follow the circle exactly and the estimate falls irregularly, about N^-0.7.) Writes
 //   ex07_mesh_K.png (mesh coloured by the estimated error per triangle) for the first and last
 //   cycles unless --pictures 0.
-#include "adapt/adaptive_loop.hpp"
-#include "adapt/convergence.hpp"
-#include "core/error.hpp"
-#include "io/picture.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/picture.hpp"
 
 #include <cmath>
 #include <cstdio>

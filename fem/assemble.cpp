@@ -1,7 +1,7 @@
-#include "fem/assemble.hpp"
+#include "ablmg/fem/assemble.hpp"
 
-#include "core/error.hpp"
-#include "fem/quadrature.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/quadrature.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -15,8 +15,8 @@
 ///
 /// The sparsity pattern (vertex adjacency) is built directly in compressed form: O(N) memory
 /// beyond the matrix, no triplet list.
-#include "core/mesh2.hpp"
-#include "fem/poisson_problem.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/fem/poisson_problem.hpp"
 
 #include <Eigen/Sparse>
 

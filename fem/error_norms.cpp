@@ -1,7 +1,7 @@
-#include "fem/error_norms.hpp"
+#include "ablmg/fem/error_norms.hpp"
 
-#include "core/error.hpp"
-#include "fem/quadrature.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/quadrature.hpp"
 
 #include <cmath>
 #include <limits>

@@ -10,8 +10,8 @@
 ///               discrete error, so adaptive loops report both)
 ///   elementL2[t], elementH1[t]: the same norms restricted to triangle t (not squared), so
 ///               l2² = Σ elementL2[t]².
-#include "core/mesh2.hpp"
-#include "fem/poisson_problem.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/fem/poisson_problem.hpp"
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
-#include "fem/ordering.hpp"
+#include "ablmg/fem/ordering.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <atomic>

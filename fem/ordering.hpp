@@ -14,7 +14,7 @@
 /// structured grid it is exactly one grid line. Both sides are ordered recursively, then the
 /// separator (by id). Sets of ≤ `leafSize` unknowns are ordered by approximate minimum degree
 /// (SuiteSparse AMD), which beats dissection on small pieces. Deterministic: no ties decide.
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <Eigen/Sparse>
 

@@ -1,6 +1,6 @@
-#include "fem/quadrature.hpp"
+#include "ablmg/fem/quadrature.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
-#include "fem/solve.hpp"
+#include "ablmg/fem/solve.hpp"
 
-#include "core/error.hpp"
-#include "fem/ordering.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/ordering.hpp"
 
 #include <Eigen/CholmodSupport>
 

@@ -17,9 +17,9 @@
 /// Errors (InputError, with the reason): the system is not SPD or is singular — κ ≤ 0, no
 /// Dirichlet boundary (pure Neumann), a mesh piece without Dirichlet vertex (from assemble()),
 /// or CHOLMOD reporting a non-positive pivot.
-#include "core/mesh2.hpp"
-#include "fem/assemble.hpp"
-#include "fem/poisson_problem.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/fem/assemble.hpp"
+#include "ablmg/fem/poisson_problem.hpp"
 
 #include <Eigen/Core>
 

@@ -1,6 +1,6 @@
-#include "fem/structured_mesh.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,8 +12,8 @@
 /// [−p·h, p·h]² (h = min cell side; p ≤ 0.2 keeps every triangle valid), seeded by `seed`
 /// (std::mt19937_64: same seed, same mesh): an "unstructured" mesh of the same density.
 /// The result passes Mesh2::validate with the domain's area.
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
 
 #include <cstdint>
 

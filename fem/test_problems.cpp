@@ -1,6 +1,6 @@
-#include "fem/test_problems.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -16,9 +16,9 @@
 ///
 /// Boundary tags: rectangles as Domain::rectangle (1 bottom, 2 right, 3 top, 4 left); the
 /// L-shape's six segments are tagged 1…6 counter-clockwise from (0,0)→(1,0).
-#include "core/domain.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/poisson_problem.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/poisson_problem.hpp"
 
 #include <map>
 #include <string>

@@ -7,8 +7,8 @@
 // values contain '/' or ".." are skipped, and relative names resolve in tests/data (the small
 // real .poly/.mesh/.sol fixtures, ABLMG_FUZZ_FILES_DIR), so "square_hole.poly" or
 // {"mesh": "square.mesh", "sol": "square.sol"} are read, as `ablmg mesh` would read them.
-#include "cli/config.hpp"
-#include "core/error.hpp"
+#include "ablmg/cli/config.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 // Fuzzes Domain construction/validation with arbitrary coordinates (NaN, Inf, duplicates,
 // self-intersections): InputError or a valid domain whose area is positive — never a crash.
-#include "core/domain.hpp"
-#include "core/error.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <cstdint>
 #include <cstring>

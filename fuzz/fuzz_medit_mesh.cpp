@@ -4,10 +4,10 @@
 // domain of positive area) and points are located in it (a triangle of the mesh, barycentric
 // weights summing to 1). Every InputError names the file ("fuzz:<line>: ...", the header's
 // promise). Anything else (crash, sanitizer report, other exception) is a finding.
-#include "core/domain_from_mesh.hpp"
-#include "core/error.hpp"
-#include "core/point_locator.hpp"
-#include "io/medit.hpp"
+#include "ablmg/core/domain_from_mesh.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/point_locator.hpp"
+#include "ablmg/io/medit.hpp"
 
 #include <cmath>
 #include <cstdint>

@@ -3,8 +3,8 @@
 // finite, positive eigenvalues with finite inverses). A non-SPD metric returned without an
 // error, an error that does not name the file ("fuzz:<line>: ..."), a crash or a sanitizer
 // report is a finding.
-#include "core/error.hpp"
-#include "io/medit.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
 
 #include <cstdint>
 #include <string>

@@ -1,7 +1,7 @@
 // Fuzzes the metric expression input (AnalyticMetricField, muparser): any bytes must give an
 // InputError or a field whose evaluations are SPD or an InputError — never a crash.
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
 
 #include <cstdint>
 #include <string>

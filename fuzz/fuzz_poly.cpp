@@ -2,8 +2,8 @@
 // a Domain of positive area whose loops are closed (≥ 3 points, one tag per segment); every
 // InputError names the file ("fuzz:<line>: ..." or "fuzz: ..."). A crash, a sanitizer report or
 // another exception is a finding.
-#include "core/error.hpp"
-#include "io/poly.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/poly.hpp"
 
 #include <cstdint>
 #include <string>

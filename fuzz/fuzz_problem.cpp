@@ -4,8 +4,8 @@
 // data, exact u and ∇u) can be evaluated at a few points without crashing; every InputError
 // names the file ("fuzz.json: ...", the header's promise). Values are not
 // checked: a user's expression may well be NaN somewhere (assemble() rejects κ ≤ 0 or NaN).
-#include "cli/problem_config.hpp"
-#include "core/error.hpp"
+#include "ablmg/cli/problem_config.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <nlohmann/json.hpp>
 

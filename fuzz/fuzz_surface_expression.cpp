@@ -5,8 +5,8 @@
 // finite or an InputError; InducedMetricField::at (eq. 16) is an SPD metric or an InputError,
 // "never a NaN metric". Anything else (a non-SPD or non-finite metric returned, a crash, a
 // sanitizer report, another exception type) is a finding.
-#include "core/error.hpp"
-#include "mesher/surface.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/surface.hpp"
 
 #include <cstdint>
 #include <cstdlib>

@@ -1,6 +1,6 @@
-#include "io/atomic_file.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <atomic>
 #include <cstdio>

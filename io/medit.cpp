@@ -1,8 +1,8 @@
-#include "io/medit.hpp"
+#include "ablmg/io/medit.hpp"
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/text_scanner.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/text_scanner.hpp"
 
 #include <algorithm>
 #include <cctype>

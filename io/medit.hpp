@@ -21,8 +21,8 @@
 /// Writing: `MeshVersionFormatted 2`, `Dimension 2` (or 3 for surfaces), each double in the
 /// shortest form that reads back to the same bits (std::to_chars: 0.1, 1e-300, 0.3333333333333333),
 /// atomically (temporary file + rename), readable by MMG, FreeFem++ and Gmsh.
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <Eigen/Core>
 

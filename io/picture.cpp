@@ -1,7 +1,7 @@
-#include "io/picture.hpp"
+#include "ablmg/io/picture.hpp"
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
 #include <cairo.h>
 

@@ -3,9 +3,9 @@
 ///
 /// The view maps the bounding box of what is drawn to the image with equal x/y scale (y up)
 /// and a margin. Colours of scalar values use a blue→red ramp with a colour bar at the right.
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <span>
 #include <string>

@@ -1,7 +1,7 @@
-#include "io/poly.hpp"
+#include "ablmg/io/poly.hpp"
 
-#include "core/error.hpp"
-#include "io/text_scanner.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/text_scanner.hpp"
 
 #include <algorithm>
 #include <climits>

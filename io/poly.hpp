@@ -14,7 +14,7 @@
 /// is not closed at vertex 4"), a branching vertex, indices out of range, non-finite
 /// coordinates, a `.poly` with 0 vertices (separate .node file, not supported), an inner loop
 /// that contains no hole point (interior constraint loops are not supported yet).
-#include "core/domain.hpp"
+#include "ablmg/core/domain.hpp"
 
 #include <string>
 

@@ -1,9 +1,9 @@
-#include "io/stl.hpp"
+#include "ablmg/io/stl.hpp"
 
 #include <Eigen/Geometry>  // cross()
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
 #include <iomanip>
 

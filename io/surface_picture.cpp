@@ -1,7 +1,7 @@
-#include "io/surface_picture.hpp"
+#include "ablmg/io/surface_picture.hpp"
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
 #include <Eigen/Geometry>
 #include <cairo.h>

@@ -1,6 +1,6 @@
-#include "io/text_scanner.hpp"
+#include "ablmg/io/text_scanner.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <algorithm>
 #include <cerrno>

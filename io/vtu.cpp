@@ -1,7 +1,7 @@
-#include "io/vtu.hpp"
+#include "ablmg/io/vtu.hpp"
 
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

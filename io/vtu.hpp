@@ -7,8 +7,8 @@
 /// components (checked: ablmg::InputError naming the field). Typical fields:
 ///   metricTensorField(...)  "metric" with 3 components m11 m12 m22, plus "h1", "h2", "angle";
 ///   a P1 solution "u" (1 component); per-triangle "quality" or "error".
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <Eigen/Core>
 

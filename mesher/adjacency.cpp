@@ -1,7 +1,7 @@
-#include "mesher/adjacency.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
-#include "core/bucket_grid.hpp"
+#include "ablmg/core/bucket_grid.hpp"
 
 #include <omp.h>
 

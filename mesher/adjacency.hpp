@@ -4,8 +4,8 @@
 /// Nodes i, j are adjacent iff their metric distance with the averaged tensor (eq. 3),
 /// sqrt(dᵀ (M_i + M_j)/2 d), is ≤ radius (paper: 1.7σ, i.e. 1.7 in metric units since the
 /// rest distance σ = l_ij + l_ji ≈ 1). The relation is symmetric by construction.
-#include "core/metric2.hpp"
-#include "mesher/node_set.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/mesher/node_set.hpp"
 
 #include <algorithm>
 #include <cmath>

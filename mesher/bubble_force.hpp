@@ -5,7 +5,7 @@
 /// {v : vᵀ M_i v ≤ 1} scaled by 1/2, so the distance from x_i to its bubble boundary towards
 /// x_j is l_ij = 0.5 · M_i.ellipseRadius(x_j − x_i), and two bubbles touch at the rest
 /// distance l0 = l_ij + l_ji (eq. 8), ≈ 1 in metric units.
-#include "core/metric2.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <cmath>
 #include <string>

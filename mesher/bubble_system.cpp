@@ -1,8 +1,8 @@
-#include "mesher/bubble_system.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/bubble_system.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
-#include "core/error.hpp"
-#include "mesher/bubble_force.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/bubble_force.hpp"
 
 #include <omp.h>
 

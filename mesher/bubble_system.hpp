@@ -21,10 +21,10 @@
 /// part for Segment nodes), before the step; at rest it is c × the largest velocity.
 /// Deterministic and thread-count independent: forces are computed per node from the
 /// positions at the start of the step (no cross-thread reductions), then all nodes move.
-#include "core/metric_field.hpp"
-#include "mesher/bubble_force.hpp"
-#include "mesher/initial_placement.hpp"
-#include "mesher/node_set.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/bubble_force.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
+#include "ablmg/mesher/node_set.hpp"
 
 #include <vector>
 

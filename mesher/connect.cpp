@@ -1,9 +1,9 @@
-#include "mesher/connect.hpp"
+#include "ablmg/mesher/connect.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
-#include "mesher/parallel_threshold.hpp"
-#include "mesher/triangulation.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/triangulation.hpp"
 
 #include <omp.h>
 

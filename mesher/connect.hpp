@@ -23,9 +23,9 @@
 ///
 /// Interior nodes outside the polygon through the boundary nodes (possible on curved loops,
 /// between a chord and its arc) are left out of the mesh (`droppedNodes`, `nodeOfVertex`).
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
-#include "mesher/place_nodes.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
 
 namespace ablmg::mesher {
 

@@ -1,6 +1,6 @@
-#include "mesher/defects.hpp"
-#include "mesher/adjacency.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/defects.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
 #include <algorithm>
 #include <cmath>

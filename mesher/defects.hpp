@@ -34,7 +34,7 @@
 /// Invariants: Interior nodes only, a kicked node stays inside and ≥ 0.5 (metric) from the
 /// boundary; the node count is unchanged; deterministic (the kick is a hash of the node id and
 /// the pass, no RNG state; the topology is computed per node), for any thread count.
-#include "mesher/bubble_system.hpp"
+#include "ablmg/mesher/bubble_system.hpp"
 
 #include <span>
 #include <vector>

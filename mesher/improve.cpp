@@ -1,8 +1,8 @@
-#include "mesher/improve.hpp"
+#include "ablmg/mesher/improve.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <algorithm>
 #include <array>

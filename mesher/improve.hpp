@@ -46,9 +46,9 @@
 /// compact after a collapse; a move or collapse search that failed is not repeated until a
 /// triangle it depends on changes (same result, less work on stuck triangles). With no bad
 /// triangle, one O(N) quality scan and nothing else.
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
-#include "core/metric_field.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/core/metric_field.hpp"
 
 #include <vector>
 

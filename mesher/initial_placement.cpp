@@ -1,9 +1,9 @@
-#include "mesher/initial_placement.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
-#include "mesher/adjacency.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
 #include <algorithm>
 #include <cmath>

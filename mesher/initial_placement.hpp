@@ -21,10 +21,10 @@
 ///     With an orientation other than Axes the six directions are first turned in metric
 ///     space so that one row runs along the node's long or short eigenvector: the step is
 ///     M_p^{-1/2} Q(φ_p) d (latticeMap in the .cpp), still exact for a constant metric.
-#include "core/bucket_grid.hpp"
-#include "core/domain.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/node_set.hpp"
+#include "ablmg/core/bucket_grid.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/node_set.hpp"
 
 #include <span>
 #include <string>

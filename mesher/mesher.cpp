@@ -1,6 +1,6 @@
-#include "mesher/mesher.hpp"
+#include "ablmg/mesher/mesher.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <chrono>
 

@@ -8,12 +8,12 @@
 /// area) and returns it with statistics. It never returns an invalid mesh: it throws
 /// ablmg::Error if repair fails, ablmg::InputError for bad input (non-SPD metric, a metric
 /// asking for more than maxNodes nodes, ...). It does not print, open files or exit.
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/connect.hpp"
-#include "mesher/improve.hpp"
-#include "mesher/place_nodes.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/connect.hpp"
+#include "ablmg/mesher/improve.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
 
 namespace ablmg::mesher {
 

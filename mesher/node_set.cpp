@@ -1,4 +1,4 @@
-#include "mesher/node_set.hpp"
+#include "ablmg/mesher/node_set.hpp"
 
 #include <algorithm>
 

@@ -4,8 +4,8 @@
 /// NodeSet: node positions (structure of arrays) with the geometric entity each node lives on
 /// (paper §3.1: vertices, edges, faces). AdjacencyLists: CSR lists of neighbours within the
 /// adjacency radius (1.7σ in the metric sense, §3.3).
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <cstdint>
 #include <span>

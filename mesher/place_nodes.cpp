@@ -1,13 +1,13 @@
-#include "mesher/place_nodes.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
-#include "core/error.hpp"
-#include "mesher/adjacency.hpp"
-#include "mesher/bubble_force.hpp"
-#include "mesher/bubble_system.hpp"
-#include "mesher/defects.hpp"
-#include "mesher/initial_placement.hpp"
-#include "mesher/population.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/bubble_force.hpp"
+#include "ablmg/mesher/bubble_system.hpp"
+#include "ablmg/mesher/defects.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
+#include "ablmg/mesher/population.hpp"
 
 #include <omp.h>
 

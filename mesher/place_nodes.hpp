@@ -29,11 +29,11 @@
 ///
 /// Deterministic: same domain, metric and options (seed) ⇒ bit-identical result, for any
 /// number of threads (no floating reductions across threads; nothing random is drawn).
-#include "core/domain.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/bubble_force.hpp"
-#include "mesher/initial_placement.hpp"
-#include "mesher/node_set.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/bubble_force.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
+#include "ablmg/mesher/node_set.hpp"
 
 #include <cstdint>
 #include <vector>

@@ -1,8 +1,8 @@
-#include "mesher/population.hpp"
-#include "mesher/parallel_threshold.hpp"
+#include "ablmg/mesher/population.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
-#include "core/bucket_grid.hpp"
-#include "mesher/adjacency.hpp"
+#include "ablmg/core/bucket_grid.hpp"
+#include "ablmg/mesher/adjacency.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -37,8 +37,8 @@
 /// (the one farthest, in M_i, from the node's neighbours); deletions and insertions are
 /// taken in order of α (ties by id) and lock the node's neighbours for the rest of the pass,
 /// so one gap or overlap gets one edit. Deterministic.
-#include "core/metric_field.hpp"
-#include "mesher/bubble_system.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/bubble_system.hpp"
 
 #include <vector>
 

@@ -1,6 +1,6 @@
-#include "mesher/quality.hpp"
+#include "ablmg/mesher/quality.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <nlohmann/json.hpp>
 

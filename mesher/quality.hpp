@@ -11,9 +11,9 @@
 /// The element distribution has the 5 bins of the paper's Table 2.
 ///
 /// With the identity metric (Metric2() / isotropicMetric3(1)) every length is Euclidean.
-#include "core/mesh2.hpp"
-#include "core/metric2.hpp"
-#include "mesher/surface.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric2.hpp"
+#include "ablmg/mesher/surface.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 

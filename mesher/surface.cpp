@@ -1,6 +1,6 @@
-#include "mesher/surface.hpp"
+#include "ablmg/mesher/surface.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <muParser.h>

@@ -6,9 +6,9 @@
 ///   mesh the parameter domain with M2 (meshDomain), map the vertices back with r.
 ///
 /// Units: (u,v) are the surface's parameters; lengths in 3D are the model's units.
-#include "core/domain.hpp"
-#include "core/mesh2.hpp"
-#include "core/metric_field.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/metric_field.hpp"
 
 #include <Eigen/Core>
 

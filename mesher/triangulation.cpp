@@ -1,7 +1,7 @@
-#include "mesher/triangulation.hpp"
+#include "ablmg/mesher/triangulation.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 /// when the filtered determinant is certainly positive, so insertion terminates.
 /// Three artificial vertices (ids n, n+1, n+2) enclose the points; they belong to no inside
 /// triangle once classify() has run.
-#include "core/vec2.hpp"
+#include "ablmg/core/vec2.hpp"
 
 #include <array>
 #include <cstdint>

@@ -13,11 +13,11 @@
 // range, marked *; cycle 0 is both loops' uniform start mesh and is compared directly);
 // 3. rates over the last 4 cycles; 4. the Markdown report; 5. the PNG: L2 and H1 against N over
 // the two final meshes (io::tilePictures).
-#include "adapt/convergence.hpp"
-#include "core/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/medit.hpp"
-#include "io/picture.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/atomic_file.hpp"
+#include "ablmg/io/medit.hpp"
+#include "ablmg/io/picture.hpp"
 
 #include <algorithm>
 #include <cmath>

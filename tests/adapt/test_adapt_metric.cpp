@@ -1,10 +1,10 @@
 // The mesher-free steps of adapt/adaptive_loop.hpp: adaptMetric() (recover → metric →
 // gradation at a target complexity) and metricQuality().
-#include "adapt/adaptive_loop.hpp"
-#include "adapt/gradation.hpp"
-#include "core/error.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/gradation.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

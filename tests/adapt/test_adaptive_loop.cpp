@@ -1,10 +1,10 @@
 // Mirrors adapt/adaptive_loop.hpp: a small wave-front loop (≈ 500 → 4000 vertices, 4 cycles)
 // through the real mesher: every mesh valid, errors fall, rates near the optimal P1 rates
 // (L2 −1, H1 −1/2), vertex counts follow the schedule.
-#include "adapt/adaptive_loop.hpp"
-#include "adapt/convergence.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

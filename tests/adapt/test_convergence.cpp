@@ -1,6 +1,6 @@
 // Mirrors adapt/convergence.hpp.
-#include "adapt/convergence.hpp"
-#include "core/error.hpp"
+#include "ablmg/adapt/convergence.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Mirrors adapt/gradation.hpp: the size growth along every edge is bounded afterwards, an
 // already-graded field is untouched, anisotropy survives, metrics only grow.
-#include "adapt/gradation.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/adapt/gradation.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

@@ -1,10 +1,10 @@
 // Mirrors adapt/hessian_recovery.hpp: both methods reproduce the Hessian of a quadratic at
 // every vertex (boundary included) on perturbed ("unstructured") meshes; second order on a
 // smooth function; bad input rejected.
-#include "adapt/hessian_recovery.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

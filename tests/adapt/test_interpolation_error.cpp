@@ -1,10 +1,10 @@
 // Mirrors adapt/interpolation_error.hpp: the estimate equals the true P1 interpolation error of
 // a quadratic (fem::computeErrors' l2Interp, degree-8 quadrature) on perturbed meshes, with the
 // exact Hessian and with the recovered one; close to it for a smooth non-quadratic u.
-#include "adapt/interpolation_error.hpp"
-#include "core/error.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/adapt/interpolation_error.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 #include <cmath>

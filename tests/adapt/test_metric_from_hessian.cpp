@@ -1,8 +1,8 @@
 // Mirrors adapt/metric_from_hessian.hpp: the requested complexity, the bounds, the Lp scaling,
 // and the H1 (W^{1,p} seminorm) metric: shape |H|²/det|H|, density det|H|^(p/(p+2)).
-#include "adapt/metric_from_hessian.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/adapt/metric_from_hessian.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <Eigen/LU>
 #include <gtest/gtest.h>

@@ -3,11 +3,11 @@
 // same area, keeps the boundary refs on the right sides; hmin/hmax move the vertex count the
 // right way; bad input is an InputError naming what is wrong; same input, same mesh; the
 // result equals the composition `ablmg remesh` ran before the call existed.
-#include "adapt/remesh.hpp"
+#include "ablmg/adapt/remesh.hpp"
 
-#include "core/domain_from_mesh.hpp"
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/core/domain_from_mesh.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 

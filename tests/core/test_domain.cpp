@@ -1,5 +1,5 @@
-#include "core/domain.hpp"
-#include "core/error.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

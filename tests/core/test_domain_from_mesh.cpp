@@ -1,8 +1,8 @@
 // Mirrors core/domain_from_mesh.hpp: the loops of a mesh's boundary, as a Domain.
-#include "core/domain_from_mesh.hpp"
+#include "ablmg/core/domain_from_mesh.hpp"
 
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/mesh2.hpp"
+#include "ablmg/core/mesh2.hpp"
 
 #include <gtest/gtest.h>
 

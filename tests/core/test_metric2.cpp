@@ -1,5 +1,5 @@
-#include "core/error.hpp"
-#include "core/metric2.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric2.hpp"
 
 #include <gtest/gtest.h>
 

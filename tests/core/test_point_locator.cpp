@@ -1,7 +1,7 @@
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
-#include "core/point_locator.hpp"
-#include "core/predicates.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/point_locator.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <gtest/gtest.h>
 

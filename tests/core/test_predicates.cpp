@@ -1,4 +1,4 @@
-#include "core/predicates.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <gtest/gtest.h>
 

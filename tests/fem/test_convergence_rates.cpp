@@ -1,9 +1,9 @@
 // Verification (issue 5 acceptance): a smooth manufactured solution converges at the optimal
 // P1 rates on ≥ 4 levels of uniform and of randomly perturbed ("unstructured") meshes.
-#include "fem/error_norms.hpp"
-#include "fem/solve.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Tests of fem/error_norms.hpp against known values.
-#include "fem/error_norms.hpp"
+#include "ablmg/fem/error_norms.hpp"
 
-#include "core/error.hpp"
-#include "fem/structured_mesh.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Tests of fem/ordering.hpp: a permutation, deterministic, and a fill-reducing one.
-#include "fem/ordering.hpp"
+#include "ablmg/fem/ordering.hpp"
 
-#include "fem/assemble.hpp"
-#include "fem/solve.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/fem/assemble.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>

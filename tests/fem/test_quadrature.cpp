@@ -1,7 +1,7 @@
 // Tests of fem/quadrature.hpp: each rule integrates every monomial of its degree exactly.
-#include "fem/quadrature.hpp"
+#include "ablmg/fem/quadrature.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // Tests of fem/assemble.hpp + fem/solve.hpp: patch test, Neumann data, lifting, errors on
 // singular or non-SPD systems.
-#include "fem/solve.hpp"
+#include "ablmg/fem/solve.hpp"
 
-#include "core/error.hpp"
-#include "fem/error_norms.hpp"
-#include "fem/structured_mesh.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>

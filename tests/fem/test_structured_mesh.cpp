@@ -1,8 +1,8 @@
 // Tests of fem/structured_mesh.hpp: valid meshes, tags, perturbation keeps validity.
-#include "fem/structured_mesh.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
 
-#include "core/error.hpp"
-#include "fem/test_problems.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 

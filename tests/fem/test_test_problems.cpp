@@ -1,7 +1,7 @@
 // Tests of fem/test_problems.hpp: f = −Δu and ∇u checked by finite differences; parameters.
-#include "fem/test_problems.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Tests of io/atomic_file.hpp: a writer that throws leaves the previous file intact and no
 // temporary behind.
-#include "io/atomic_file.hpp"
+#include "ablmg/io/atomic_file.hpp"
 
 #include <gtest/gtest.h>
 

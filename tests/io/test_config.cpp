@@ -1,8 +1,8 @@
 // Tests of cli/config.hpp (compiled into test_io by tests/cli/io_cli.cmake): each domain and
 // metric form, options, and errors that name the key path.
-#include "cli/config.hpp"
+#include "ablmg/cli/config.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

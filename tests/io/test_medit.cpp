@@ -1,8 +1,8 @@
 // Tests of io/medit.hpp: round trips, files in MMG / FreeFem++ / Gmsh style, and bad files
 // that must throw InputError naming file:line (never crash).
-#include "io/medit.hpp"
+#include "ablmg/io/medit.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

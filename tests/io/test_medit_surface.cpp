@@ -1,8 +1,8 @@
 // io/medit.hpp readSurfaceMesh: a surface written by writeSurfaceMesh reads back exactly; a
 // planar file reads with z = 0; errors are the same file:line InputErrors as readMesh's.
-#include "io/medit.hpp"
+#include "ablmg/io/medit.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Tests of cli/mesh_output.hpp (compiled into test_io by tests/cli/io_cli.cmake): the .vtu of a
 // mesh carries its quality in the metric, read back with VTK's own reader.
-#include "cli/mesh_output.hpp"
+#include "ablmg/cli/mesh_output.hpp"
 
-#include "io/medit.hpp"
+#include "ablmg/io/medit.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Tests of io/picture.hpp: the PNGs exist, have the requested width, and show what was drawn
 // where it should be (pixels read back through cairo).
-#include "io/picture.hpp"
+#include "ablmg/io/picture.hpp"
 
-#include "core/error.hpp"
-#include "io/medit.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
 
 #include <cairo.h>
 #include <gtest/gtest.h>

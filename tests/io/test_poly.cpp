@@ -1,7 +1,7 @@
 // Tests of io/poly.hpp: loops, holes, markers → tags; bad files name the vertex/segment.
-#include "io/poly.hpp"
+#include "ablmg/io/poly.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Tests of cli/problem_config.hpp (compiled into test_io by tests/cli/io_cli.cmake): the
 // "problem" of `ablmg solve` / `ablmg adapt` configs, and errors that name the file.
-#include "cli/problem_config.hpp"
+#include "ablmg/cli/problem_config.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Tests of io/surface_picture.hpp: the PNG exists with the requested width, the face turned
 // to the light is brighter than one seen edge-on, the nearer of two overlapping triangles is
 // the one drawn (painter's order), and bad input throws without leaving a file.
-#include "io/surface_picture.hpp"
+#include "ablmg/io/surface_picture.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <cairo.h>
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Tests of io/vtu.hpp: the file reads back with VTK's own reader (counts and field values).
-#include "io/vtu.hpp"
+#include "ablmg/io/vtu.hpp"
 
-#include "core/error.hpp"
-#include "io/medit.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/io/medit.hpp"
 
 #include <gtest/gtest.h>
 

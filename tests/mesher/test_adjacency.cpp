@@ -1,4 +1,4 @@
-#include "mesher/adjacency.hpp"
+#include "ablmg/mesher/adjacency.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-#include "mesher/bubble_force.hpp"
+#include "ablmg/mesher/bubble_force.hpp"
 
-#include "core/domain.hpp"
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/core/domain.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "mesher/adjacency.hpp"
-#include "mesher/bubble_system.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/bubble_system.hpp"
 
 #include <gtest/gtest.h>
 

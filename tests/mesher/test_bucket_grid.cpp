@@ -1,4 +1,4 @@
-#include "core/bucket_grid.hpp"
+#include "ablmg/core/bucket_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Mirrors mesher/connect.hpp: eq. (12) and its tie rule; valid meshes on random polygons with
 // holes and random metrics; the degenerate inputs the issue names; the paper's disk cases
 // (§4.3) with the edge-length and quality figures; thread-count independence.
-#include "mesher/connect.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/mesher/connect.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
-#include "core/error.hpp"
-#include "core/metric_field.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/metric_field.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-#include "mesher/adjacency.hpp"
-#include "mesher/defects.hpp"
-#include "mesher/place_nodes.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/defects.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
 
 #include <gtest/gtest.h>
 

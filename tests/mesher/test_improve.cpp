@@ -4,12 +4,12 @@
 // nodes that no move can spread is collapsed (and only then fixed); determinism; q min never
 // decreases and the boundary stays on randomly perturbed meshes; option errors; meshDomain's
 // wiring (metric vector in step with the vertices after collapses).
-#include "mesher/improve.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
+#include "ablmg/mesher/improve.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
-#include "core/error.hpp"
-#include "core/predicates.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
-#include "mesher/initial_placement.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
 
-#include "core/error.hpp"
-#include "mesher/adjacency.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/adjacency.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "core/error.hpp"
-#include "mesher/place_nodes.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/place_nodes.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "mesher/adjacency.hpp"
-#include "mesher/population.hpp"
+#include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/mesher/population.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // mesher/quality.hpp: edge metric lengths, deviation histogram (eq. 13, Table 1), element quality
 // q and its bins (Table 2), Lee's α on surfaces, JSON/text reports — on hand-computed values.
-#include "mesher/quality.hpp"
+#include "ablmg/mesher/quality.hpp"
 
-#include "core/error.hpp"
+#include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
-#include "core/error.hpp"
-#include "mesher/mesher.hpp"
-#include "mesher/quality.hpp"
-#include "mesher/surface.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
+#include "ablmg/mesher/surface.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
 // Mirrors mesher/triangulation.hpp: the scaffold stays a valid triangulation through
 // insertion, edge recovery, classification and flips, and insertion gives Delaunay.
-#include "mesher/triangulation.hpp"
+#include "ablmg/mesher/triangulation.hpp"
 
-#include "core/error.hpp"
-#include "core/mesh2.hpp"
-#include "core/predicates.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/mesh2.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <gtest/gtest.h>
 
