@@ -12,7 +12,7 @@ namespace ablmg::adapt {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-} // namespace
+}  // namespace
 
 QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics) {
   ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
@@ -36,7 +36,8 @@ QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics
 }
 
 std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
-                                 const AdaptOptions& options, double* tRecover, double* tMetric, GradationStats* gradation) {
+                                 const AdaptOptions& options, double* tRecover, double* tMetric,
+                                 GradationStats* gradation) {
   const auto t0 = Clock::now();
   const auto hessians = recoverHessians(mesh, u, options.hessian);
   if (tRecover) *tRecover = since(t0);
@@ -71,4 +72,4 @@ std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hess
   return metric;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -13,7 +13,7 @@ namespace ablmg::adapt {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-} // namespace
+}  // namespace
 
 void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(!o.targetVertices.empty(), "adapt options: targetVertices is empty");
@@ -23,7 +23,8 @@ void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(o.cycles >= 0, "adapt options: cycles must be >= 0 (got " << o.cycles << ")");
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "adapt options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
-  ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8, "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
+  ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
+                "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
   MetricOptions m = o.metric;
   m.targetVertices = o.targetVertices.front();
   validate(m);
@@ -47,7 +48,8 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 namespace {
 void requireMeshIndependent(const AdaptProblem& p) {
   const auto check = [](const fem::ScalarData& d, const std::string& what) {
-    ABLMG_REQUIRE(!d.isVertexValues(), "adaptive loop: " << what << " is given per vertex; the loop needs a function or "
+    ABLMG_REQUIRE(!d.isVertexValues(), "adaptive loop: " << what
+                                                         << " is given per vertex; the loop needs a function or "
                                                             "a constant (the mesh changes every cycle)");
   };
   check(p.pde.kappa, "kappa");
@@ -57,7 +59,7 @@ void requireMeshIndependent(const AdaptProblem& p) {
   for (const auto& [tag, d] : p.pde.neumann) check(d, "the Neumann data of tag " + std::to_string(tag));
   ABLMG_REQUIRE(!p.exact || p.exact->u, "adaptive loop: the exact solution has no u");
 }
-} // namespace
+}  // namespace
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle) {
@@ -66,7 +68,9 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   ABLMG_REQUIRE(problem.exact || (options.stopL2 <= 0 && options.stopH1 <= 0),
                 "adapt options: stopL2/stopH1 need the exact solution, and this problem has none");
   const int cycles = options.cycles > 0 ? options.cycles : int(options.targetVertices.size());
-  auto target = [&](int k) { return options.targetVertices[std::min<std::size_t>(k, options.targetVertices.size() - 1)]; };
+  auto target = [&](int k) {
+    return options.targetVertices[std::min<std::size_t>(k, options.targetVertices.size() - 1)];
+  };
   const fem::PoissonProblem& poisson = problem.pde;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -89,20 +93,23 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     t0 = Clock::now();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = since(t0);
-    const fem::ErrorReport err = problem.exact ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
-                                               : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
+    const fem::ErrorReport err = problem.exact
+                                     ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
+                                     : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
     row.l2 = err.l2;
     row.h1 = err.h1;
     row.l2Interp = err.l2Interp;
     row.maxVertex = err.maxVertex;
 
     std::vector<Metric2> next;
-    const bool reached = (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
+    const bool reached =
+        (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
     report.stoppedEarly = reached && k + 1 < cycles;
     const bool last = k + 1 == cycles || reached;
     // Recovered Hessians: the error estimate of every cycle, and the next metric.
     t0 = Clock::now();
-    const auto hessians = recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
+    const auto hessians =
+        recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
     row.tRecover = since(t0);
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
@@ -119,7 +126,8 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
       std::vector<char> onBoundary(std::size_t(current.mesh.numVertices()), 0);
       for (const auto& e : current.mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
       for (int v = 0; v < current.mesh.numVertices(); ++v)
-        if (!onBoundary[std::size_t(v)]) meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
+        if (!onBoundary[std::size_t(v)])
+          meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
     }
     current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
     tMesh = since(t0);
@@ -149,4 +157,4 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   return report;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

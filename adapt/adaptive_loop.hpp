@@ -41,10 +41,10 @@ namespace ablmg::adapt {
 
 struct AdaptOptions {
   std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
-  int cycles = 0;                     ///< 0 = targetVertices.size(); more repeats the last N
+  int cycles = 0;                                              ///< 0 = targetVertices.size(); more repeats the last N
   HessianMethod hessian = HessianMethod::LeastSquares;
-  MetricOptions metric;               ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
-  double hgrad = 0;                   ///< > 1: gradation (gradation.hpp); ≤ 0: off
+  MetricOptions metric;  ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
+  double hgrad = 0;      ///< > 1: gradation (gradation.hpp); ≤ 0: off
   /// The mesher's options. The loop's default turns the initial lattice so that one row of
   /// bubbles runs along each node's short-size direction (LatticeOrientation::ShortAxis, the
   /// Hessian's steep eigenvector): at equal vertex count on the wave front (α = 20, p = 4,
@@ -72,7 +72,7 @@ struct AdaptOptions {
     return m;
   }();
   fem::SolveOptions solve;
-  int errorDegree = 8;                ///< quadrature degree of the error norms (fem/error_norms.hpp)
+  int errorDegree = 8;  ///< quadrature degree of the error norms (fem/error_norms.hpp)
   /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.
   double stopL2 = 0, stopH1 = 0;
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
@@ -100,29 +100,29 @@ struct CycleReport {
   double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
-  long predictedVertices = 0;   ///< the mesher's estimate N* for mesh_k
+  long predictedVertices = 0;  ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
 };
 
 struct AdaptReport {
   std::vector<CycleReport> cycles;
-  int rateWindow = 0;                 ///< cycles used by the fitted rates (last min(4, K))
+  int rateWindow = 0;                               ///< cycles used by the fitted rates (last min(4, K))
   double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
   double l2InterpEstimateRate = 0;                  ///< the same for l2InterpEstimate (known without exact u)
-  bool errorsDecrease = false;        ///< l2 and h1 fall from the first cycle to the last
-  bool stoppedEarly = false;          ///< a stop criterion ended the loop before `cycles`
+  bool errorsDecrease = false;                      ///< l2 and h1 fall from the first cycle to the last
+  bool stoppedEarly = false;                        ///< a stop criterion ended the loop before `cycles`
 };
 
 /// What onCycle sees (references valid during the call only).
 struct CycleData {
   const CycleReport& report;
   const Mesh2& mesh;
-  const std::vector<Metric2>& meshMetric;   ///< the metric mesh_k was built for, per vertex
-  const Eigen::VectorXd& u;                 ///< u_h per vertex
-  const fem::ErrorReport& errors;           ///< with per-element L2/H1 errors (NaN and empty
-                                            ///< vectors when the problem has no exact solution)
-  const std::vector<Metric2>& nextMetric;   ///< M_k per vertex of mesh_k (empty in the last cycle,
-                                            ///< including one ended by a stop criterion)
+  const std::vector<Metric2>& meshMetric;  ///< the metric mesh_k was built for, per vertex
+  const Eigen::VectorXd& u;                ///< u_h per vertex
+  const fem::ErrorReport& errors;          ///< with per-element L2/H1 errors (NaN and empty
+                                           ///< vectors when the problem has no exact solution)
+  const std::vector<Metric2>& nextMetric;  ///< M_k per vertex of mesh_k (empty in the last cycle,
+                                           ///< including one ended by a stop criterion)
 };
 
 /// What the loop solves: −∇·(κ∇u) = f on `domain` with the boundary data of `pde` (by tag:
@@ -160,4 +160,4 @@ std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hess
                                          const AdaptOptions& options, double* tMetric = nullptr,
                                          GradationStats* gradation = nullptr);
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

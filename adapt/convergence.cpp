@@ -43,4 +43,4 @@ double verticesToReach(std::span<const double> n, std::span<const double> e, dou
   return std::nan("");
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

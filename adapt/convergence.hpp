@@ -17,4 +17,4 @@ double logLogSlope(std::span<const double> n, std::span<const double> e, int las
 /// finite (InputError naming the index otherwise).
 double verticesToReach(std::span<const double> n, std::span<const double> e, double target);
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -17,7 +17,8 @@ double maxGeneralisedEigenvalue(const Metric2& a, const Metric2& b) {
 
 GradationStats limitGradation(const Mesh2& mesh, std::vector<Metric2>& metrics, const GradationOptions& o) {
   ABLMG_REQUIRE(o.hgrad > 1 && std::isfinite(o.hgrad), "gradation: hgrad must be > 1 (got " << o.hgrad << ")");
-  ABLMG_REQUIRE(o.tolerance >= 0 && o.tolerance < 1, "gradation: tolerance must be in [0, 1) (got " << o.tolerance << ")");
+  ABLMG_REQUIRE(o.tolerance >= 0 && o.tolerance < 1,
+                "gradation: tolerance must be in [0, 1) (got " << o.tolerance << ")");
   ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
                 "gradation: " << metrics.size() << " metrics for " << mesh.numVertices() << " vertices");
   const auto edges = mesh.edges();
@@ -51,4 +52,4 @@ GradationStats limitGradation(const Mesh2& mesh, std::vector<Metric2>& metrics, 
   return stats;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -22,8 +22,8 @@
 namespace ablmg::adapt {
 
 struct GradationOptions {
-  double hgrad = 1.5;        ///< β > 1: largest size growth factor per unit metric length
-  double tolerance = 1e-3;   ///< relative slack before a metric is corrected (see above)
+  double hgrad = 1.5;       ///< β > 1: largest size growth factor per unit metric length
+  double tolerance = 1e-3;  ///< relative slack before a metric is corrected (see above)
   int maxSweeps = 200;
 };
 
@@ -40,4 +40,4 @@ GradationStats limitGradation(const Mesh2& mesh, std::vector<Metric2>& metrics, 
 /// for a smaller size than B in some direction.
 double maxGeneralisedEigenvalue(const Metric2& a, const Metric2& b);
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -16,8 +16,7 @@ std::vector<Vec2> areaWeightedGradients(const Mesh2& mesh, std::span<const doubl
     // ∇φ_i = n_i / (2|T|) with n_i = (−e_y, e_x) the inward normal of the opposite edge e_i
     // (CCW triangle), so 2|T| ∇u_h = Σ u_i n_i.
     const auto inward = [](const Vec2& e) { return Vec2(-e.y(), e.x()); };
-    const Vec2 gradTimesTwiceArea =
-        u[t[0]] * inward(p2 - p1) + u[t[1]] * inward(p0 - p2) + u[t[2]] * inward(p1 - p0);
+    const Vec2 gradTimesTwiceArea = u[t[0]] * inward(p2 - p1) + u[t[1]] * inward(p0 - p2) + u[t[2]] * inward(p1 - p0);
     for (int k = 0; k < 3; ++k) {
       sum[t[k]] += 0.5 * gradTimesTwiceArea;  // |T| ∇u_h
       weight[t[k]] += 0.5 * twiceArea;
@@ -48,4 +47,4 @@ std::vector<Hessian2> recoverHessiansDouble(const Mesh2& mesh, std::span<const d
   return out;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

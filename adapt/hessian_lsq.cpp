@@ -14,7 +14,7 @@ namespace {
 /// costs more than ~2000 small least-squares fits (and far more under OMP_WAIT_POLICY=passive).
 /// Each vertex's fit is independent, so the result is the same for any team size.
 constexpr int kMinParallelVertices = 2048;
-} // namespace
+}  // namespace
 
 namespace detail {
 namespace {
@@ -23,8 +23,8 @@ namespace {
 /// least-squares quadratic is the same in any affine frame (exactness for quadratics holds);
 /// only the conditioning changes. Coefficients back in x: ∇ = Tᵀ ∇_st, H = Tᵀ H_st T.
 /// Nothing (std::nullopt) if the scaled system still fails the |R_55| ≥ 1e-6 |R_00| test.
-std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, const std::vector<int>& patch, const Vec2& xv,
-                                                          const Eigen::VectorXd& b) {
+std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, const std::vector<int>& patch,
+                                                          const Vec2& xv, const Eigen::VectorXd& b) {
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (int w : patch) {
     const Vec2 d = mesh.vertices[w] - xv;
@@ -58,7 +58,7 @@ std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, con
   a << c[0], grad.x(), grad.y(), 0.5 * H(0, 0), 0.5 * (H(0, 1) + H(1, 0)), 0.5 * H(1, 1);
   return a;
 }
-} // namespace
+}  // namespace
 
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where) {
   ABLMG_REQUIRE(long(u.size()) == long(mesh.numVertices()),
@@ -131,8 +131,9 @@ Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGra
       const auto R = qr.matrixR();
       const double r0 = std::abs(R(0, 0)), r5 = std::abs(R(5, 5));
       if (r5 >= 1e-6 * r0 || !grew) {
-        ABLMG_REQUIRE(r5 > 1e-13 * r0, "recoverHessians: the patch of vertex "
-                                           << v << " cannot determine a quadratic (" << m << " points, whole component used)");
+        ABLMG_REQUIRE(r5 > 1e-13 * r0, "recoverHessians: the patch of vertex " << v << " cannot determine a quadratic ("
+                                                                               << m
+                                                                               << " points, whole component used)");
         Eigen::Matrix<double, 6, 1> a = qr.solve(b);
         a[1] /= r;
         a[2] /= r;
@@ -146,11 +147,12 @@ Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGra
       // thousands of rings along a layer. Refit in the patch's principal frame instead.
       if (const auto a = anisotropicFit(mesh, patch, xv, b)) return *a;
     }
-    ABLMG_REQUIRE(grew, "recoverHessians: the connected piece of vertex " << v << " has only " << m << " vertices (< 6)");
+    ABLMG_REQUIRE(grew,
+                  "recoverHessians: the connected piece of vertex " << v << " has only " << m << " vertices (< 6)");
   }
 }
 
-} // namespace detail
+}  // namespace detail
 
 HessianMethod parseHessianMethod(const std::string& name) {
   if (name == "lsq") return HessianMethod::LeastSquares;
@@ -194,7 +196,7 @@ std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) 
   }
   return out;
 }
-} // namespace
+}  // namespace
 
 std::vector<Hessian2> recoverHessiansDouble(const Mesh2& mesh, std::span<const double> u);  // hessian_double_l2.cpp
 
@@ -203,4 +205,4 @@ std::vector<Hessian2> recoverHessians(const Mesh2& mesh, std::span<const double>
   return method == HessianMethod::LeastSquares ? lsqHessians(mesh, u) : recoverHessiansDouble(mesh, u);
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -65,6 +65,6 @@ VertexGraph vertexGraph(const Mesh2& mesh);
 Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGraph& g, std::span<const double> u, int v,
                                               std::vector<int>& patch, std::vector<int>& mark);
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where);
-} // namespace detail
+}  // namespace detail
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -16,11 +16,12 @@ double quarticMoment(int i, int j, int k, int l) {
   return 2 * factorial[count[0]] * factorial[count[1]] * factorial[count[2]] / 720.0;
 }
 
-} // namespace
+}  // namespace
 
 InterpolationErrorEstimate estimateInterpolationError(const Mesh2& mesh, std::span<const Hessian2> hessians) {
-  ABLMG_REQUIRE(long(hessians.size()) == long(mesh.numVertices()),
-                "estimateInterpolationError: " << hessians.size() << " Hessians for " << mesh.numVertices() << " vertices");
+  ABLMG_REQUIRE(
+      long(hessians.size()) == long(mesh.numVertices()),
+      "estimateInterpolationError: " << hessians.size() << " Hessians for " << mesh.numVertices() << " vertices");
   constexpr std::array<std::array<int, 2>, 3> kEdges{{{0, 1}, {0, 2}, {1, 2}}};
   std::array<std::array<double, 3>, 3> moment{};  // moment[e][f] = ∫ λ_i λ_j λ_k λ_l / |T|
   for (int e = 0; e < 3; ++e)
@@ -50,4 +51,4 @@ InterpolationErrorEstimate estimateInterpolationError(const Mesh2& mesh, std::sp
   return out;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

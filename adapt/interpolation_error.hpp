@@ -22,11 +22,11 @@
 namespace ablmg::adapt {
 
 struct InterpolationErrorEstimate {
-  double l2 = 0;                   ///< sqrt(Σ_T elementL2²)
-  std::vector<double> elementL2;   ///< per triangle
+  double l2 = 0;                  ///< sqrt(Σ_T elementL2²)
+  std::vector<double> elementL2;  ///< per triangle
 };
 
 /// `hessians`: one per vertex of `mesh` (recoverHessians). Throws ablmg::Error on a size mismatch.
 InterpolationErrorEstimate estimateInterpolationError(const Mesh2& mesh, std::span<const Hessian2> hessians);
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -23,12 +23,14 @@ void validate(const MetricOptions& o) {
                 "metric options: targetVertices must be > 0 (got " << o.targetVertices << ")");
   ABLMG_REQUIRE(o.p >= 1, "metric options: p must be >= 1 or inf (got " << o.p << ")");
   ABLMG_REQUIRE(o.hmin >= 0 && std::isfinite(o.hmin), "metric options: hmin must be >= 0 (got " << o.hmin << ")");
-  ABLMG_REQUIRE(o.hmax > o.hmin, "metric options: hmax must be > hmin (got hmax " << o.hmax << ", hmin " << o.hmin << ")");
+  ABLMG_REQUIRE(o.hmax > o.hmin,
+                "metric options: hmax must be > hmin (got hmax " << o.hmax << ", hmin " << o.hmin << ")");
   ABLMG_REQUIRE(o.maxAnisotropy >= 1, "metric options: maxAnisotropy must be >= 1 (got " << o.maxAnisotropy << ")");
   ABLMG_REQUIRE(o.norm == ErrorNorm::L2 || o.norm == ErrorNorm::H1, "metric options: unknown norm " << int(o.norm));
   ABLMG_REQUIRE(!o.shapeBlend || (*o.shapeBlend >= 0 && *o.shapeBlend <= 1),
                 "metric options: shapeBlend must be in [0, 1] (got " << o.shapeBlend.value_or(0) << ")");
-  ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1, "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
+  ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1,
+                "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
 }
 
 Hessian2 absoluteHessian(const Hessian2& h, double floor) {
@@ -78,7 +80,7 @@ double integrate(const Mesh2& mesh, const std::vector<double>& s) {
   }
   return c;
 }
-} // namespace
+}  // namespace
 
 std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessian2> hessians, const MetricOptions& o) {
   validate(o);
@@ -143,4 +145,4 @@ std::vector<Metric2> intersectFields(std::span<const Metric2> a, std::span<const
   return out;
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -82,14 +82,14 @@ ErrorNorm parseErrorNorm(const std::string& name);
 std::string toString(ErrorNorm norm);
 
 struct MetricOptions {
-  double targetVertices = 1e4;  ///< N (> 0); the complexity aimed at is (√3/2) N
-  double p = 2;                 ///< the exponent p of the norm (Lp or W^{1,p}), ≥ 1 or infinity()
-  ErrorNorm norm = ErrorNorm::L2;       ///< which error the metric is optimal for
-  std::optional<double> shapeBlend;     ///< w ∈ [0, 1]: shape (|H|/√det|H|)^(1+w); empty = the norm's own (L2: 0, H1: 1)
-  double hmin = 0;              ///< smallest size (coordinate units), ≥ 0
+  double targetVertices = 1e4;       ///< N (> 0); the complexity aimed at is (√3/2) N
+  double p = 2;                      ///< the exponent p of the norm (Lp or W^{1,p}), ≥ 1 or infinity()
+  ErrorNorm norm = ErrorNorm::L2;    ///< which error the metric is optimal for
+  std::optional<double> shapeBlend;  ///< w ∈ [0, 1]: shape (|H|/√det|H|)^(1+w); empty = the norm's own (L2: 0, H1: 1)
+  double hmin = 0;                   ///< smallest size (coordinate units), ≥ 0
   double hmax = std::numeric_limits<double>::infinity();  ///< largest size, > hmin
-  double maxAnisotropy = 1e4;   ///< largest h1/h2 (≥ 1)
-  double eigenFloor = 1e-10;    ///< relative floor on |λ(H)| (> 0)
+  double maxAnisotropy = 1e4;                             ///< largest h1/h2 (≥ 1)
+  double eigenFloor = 1e-10;                              ///< relative floor on |λ(H)| (> 0)
 };
 
 /// Throws InputError naming the option and value if out of range.
@@ -99,7 +99,8 @@ void validate(const MetricOptions& options);
 Hessian2 absoluteHessian(const Hessian2& h, double floor);
 
 /// M_p (norm L2) or M_{1,p} (norm H1) as above, per vertex of `mesh`. hessians.size() == mesh.numVertices().
-std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessian2> hessians, const MetricOptions& options);
+std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessian2> hessians,
+                                        const MetricOptions& options);
 
 /// C = ∫_Ω √det M dx on `mesh` (per-vertex metrics).
 double metricComplexity(const Mesh2& mesh, std::span<const Metric2> metrics);
@@ -113,4 +114,4 @@ Metric2 boundMetric(const Metric2& m, double hmin, double hmax, double maxAnisot
 /// Vertex-wise intersection of two metric fields on the same vertices (core::intersect).
 std::vector<Metric2> intersectFields(std::span<const Metric2> a, std::span<const Metric2> b);
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -27,7 +27,7 @@ long clampSizes(std::vector<Metric2>& metrics, double hmin, double hmax) {
   }
   return clamped;
 }
-} // namespace
+}  // namespace
 
 void validate(const RemeshOptions& o) {
   ABLMG_REQUIRE(std::isfinite(o.hmin) && o.hmin >= 0, "remesh options: hmin must be finite and >= 0, got " << o.hmin);
@@ -39,8 +39,9 @@ void validate(const RemeshOptions& o) {
 RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions& options) {
   validate(options);
   const std::string& name = options.name;
-  ABLMG_REQUIRE(long(metric.size()) == long(mesh.numVertices()),
-                name << ": " << metric.size() << " metrics for " << mesh.numVertices() << " vertices (one per vertex needed)");
+  ABLMG_REQUIRE(long(metric.size()) == long(mesh.numVertices()), name << ": " << metric.size() << " metrics for "
+                                                                      << mesh.numVertices()
+                                                                      << " vertices (one per vertex needed)");
   for (std::size_t v = 0; v < metric.size(); ++v)
     ABLMG_REQUIRE(metric[v].isSpd(), name << ": metric[" << v << "] (" << metric[v].m11() << ", " << metric[v].m12()
                                           << ", " << metric[v].m22() << ") is not positive definite");
@@ -66,7 +67,8 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   // 4. The input mesh and metric as the background field (validated above or by the caller;
   // the clamp, gradation and domain do not change the mesh).
   t0 = Clock::now();
-  const BackgroundMetricField field(std::move(mesh), std::move(metric), BackgroundMetricField::MeshCheck::AlreadyValidated);
+  const BackgroundMetricField field(std::move(mesh), std::move(metric),
+                                    BackgroundMetricField::MeshCheck::AlreadyValidated);
   r.secondsBackgroundField = since(t0);
   // 5. The new mesh.
   t0 = Clock::now();
@@ -84,4 +86,4 @@ mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<M
   return mesher::meshDomain(domain, field, options);
 }
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -36,7 +36,7 @@
 namespace ablmg::adapt {
 
 struct RemeshOptions {
-  double hmin = 0;                                         ///< [0, hmax): smallest size h1, h2
+  double hmin = 0;                                        ///< [0, hmax): smallest size h1, h2
   double hmax = std::numeric_limits<double>::infinity();  ///< (hmin, ∞]: largest size h1, h2
   /// β > 1: size gradation on the input mesh after the clamp (gradation.hpp, MMG's -hgrad);
   /// ≤ 0 (e.g. MMG's −1): none. Values in (0, 1] are refused.
@@ -67,14 +67,14 @@ void validate(const RemeshOptions& options);
 /// The fields of mesher::MeshResult (so code written for meshDomain's result reads this one)
 /// and what remesh() did before meshing. Times are wall seconds (steady clock).
 struct RemeshResult {
-  Mesh2 mesh;                  ///< valid; boundary edges carry the input's boundary refs
-  std::vector<Metric2> metric; ///< the metric (clamped, graded, interpolated) at each new vertex
-  mesher::MeshStats stats;     ///< placement, connection, quality post-pass, validation
-  long clampedMetrics = 0;     ///< input metrics changed by the [hmin, hmax] clamp
-  GradationStats gradation;    ///< all zero when hgrad ≤ 0
-  double secondsValidate = 0;  ///< the input check (0 with AlreadyValidated)
+  Mesh2 mesh;                   ///< valid; boundary edges carry the input's boundary refs
+  std::vector<Metric2> metric;  ///< the metric (clamped, graded, interpolated) at each new vertex
+  mesher::MeshStats stats;      ///< placement, connection, quality post-pass, validation
+  long clampedMetrics = 0;      ///< input metrics changed by the [hmin, hmax] clamp
+  GradationStats gradation;     ///< all zero when hgrad ≤ 0
+  double secondsValidate = 0;   ///< the input check (0 with AlreadyValidated)
   double secondsClamp = 0, secondsGradation = 0, secondsDomain = 0, secondsBackgroundField = 0;
-  double secondsMeshing = 0;   ///< mesher::meshDomain (placement + connection + post-pass)
+  double secondsMeshing = 0;  ///< mesher::meshDomain (placement + connection + post-pass)
 };
 
 /// Remeshes the domain covered by `mesh` so that edges have unit length in `metric`.
@@ -100,4 +100,4 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
                           const mesher::MeshOptions& options = {});
 
-} // namespace ablmg::adapt
+}  // namespace ablmg::adapt

@@ -56,7 +56,7 @@ void BM_Gradation(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations() * s.mesh.numVertices());
 }
-} // namespace
+}  // namespace
 
 BENCHMARK(BM_RecoveryLsq)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RecoveryDouble)->Arg(100)->Arg(316)->Unit(benchmark::kMillisecond);

@@ -26,7 +26,8 @@ const PlacementResult& placed(long n) {
   const double h2 = std::sqrt(h1h2 / 2.5);
   PlacementOptions o;
   o.tolerance = 1e-2;
-  return cache[n] = placeNodes(Domain::disk({0, 0}, 10), ConstantMetricField(Metric2::fromSizes(2.5 * h2, h2, std::numbers::pi / 4)), o);
+  return cache[n] = placeNodes(Domain::disk({0, 0}, 10),
+                               ConstantMetricField(Metric2::fromSizes(2.5 * h2, h2, std::numbers::pi / 4)), o);
 }
 
 void BM_Connect(benchmark::State& state) {
@@ -50,10 +51,7 @@ void BM_Connect(benchmark::State& state) {
   state.counters["us/node"] = 1e6 * (s.secondsLocalMeshes + s.secondsRepair) / double(p.nodes.size());
 }
 
-} // namespace
+}  // namespace
 
-BENCHMARK(BM_Connect)
-    ->ArgsProduct({{10'000, 100'000, 1'000'000}, {1, 2}})
-    ->Unit(benchmark::kSecond)
-    ->Iterations(1);
+BENCHMARK(BM_Connect)->ArgsProduct({{10'000, 100'000, 1'000'000}, {1, 2}})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK_MAIN();

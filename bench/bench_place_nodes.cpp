@@ -72,7 +72,7 @@ void BM_PlaceRing(benchmark::State& state) {
   report(state, r);
 }
 
-} // namespace
+}  // namespace
 
 BENCHMARK(BM_PlaceConstant)
     ->ArgsProduct({{10'000, 100'000, 1'000'000}, {10}})

@@ -64,9 +64,16 @@ void BM_AssembleAndSolve(benchmark::State& state) {
   state.counters["maxVertexError"] = (s.u - interpolate(m, tp.u)).cwiseAbs().maxCoeff();
 }
 
-} // namespace
+}  // namespace
 
 BENCHMARK(BM_Assemble)->Arg(101)->Arg(317)->Arg(1001)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Solve)->Arg(101)->Arg(317)->Arg(1001)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_AssembleAndSolve)->Arg(101)->Arg(317)->Arg(1001)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(1);
+BENCHMARK(BM_AssembleAndSolve)
+    ->Arg(101)
+    ->Arg(317)
+    ->Arg(1001)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1)
+    ->Repetitions(1);
 BENCHMARK_MAIN();

@@ -44,7 +44,8 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 int fail(const std::string& msg) {
   std::cerr << "bench_stages: " << msg << "\n"
-            << "usage: bench_stages --triangles N --json OUT.json | --table A.json B.json ... [--md OUT.md] [--json OUT.json]\n";
+            << "usage: bench_stages --triangles N --json OUT.json | --table A.json B.json ... [--md OUT.md] [--json "
+               "OUT.json]\n";
   return 2;
 }
 
@@ -134,17 +135,21 @@ int table(const std::vector<std::string>& inputs, const std::string& mdPath, con
     if (!in) return fail("cannot read '" + f + "'");
     try {
       runs.push_back(nlohmann::json::parse(in));
-    } catch (const std::exception& e) {
-      return fail(f + ": " + e.what());
-    }
+    } catch (const std::exception& e) { return fail(f + ": " + e.what()); }
   }
   std::sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a["triangles"] < b["triangles"]; });
-  const char* stages[][2] = {{"initial_placement", "initial placement"}, {"dynamics", "dynamics"},
-                             {"dynamics_per_step", "dynamics per step"}, {"adjacency", "adjacency upkeep"},
-                             {"population", "population control"},     {"connection", "ABLMG connection"},
-                             {"validation", "validation"},             {"whole_mesh", "**whole mesh**"},
-                             {"write_mesh", ".mesh write"},            {"write_vtu", ".vtu write"},
-                             {"p1_assembly", "P1 assembly"},           {"p1_solve", "CHOLMOD solve"}};
+  const char* stages[][2] = {{"initial_placement", "initial placement"},
+                             {"dynamics", "dynamics"},
+                             {"dynamics_per_step", "dynamics per step"},
+                             {"adjacency", "adjacency upkeep"},
+                             {"population", "population control"},
+                             {"connection", "ABLMG connection"},
+                             {"validation", "validation"},
+                             {"whole_mesh", "**whole mesh**"},
+                             {"write_mesh", ".mesh write"},
+                             {"write_vtu", ".vtu write"},
+                             {"p1_assembly", "P1 assembly"},
+                             {"p1_solve", "CHOLMOD solve"}};
   std::vector<double> tri;
   for (const auto& r : runs) tri.push_back(r["triangles"].get<double>());
   std::ostringstream md;
@@ -158,14 +163,16 @@ int table(const std::vector<std::string>& inputs, const std::string& mdPath, con
   md << " exponent (fit) | exponent (last two) |\n|---|";
   for (std::size_t k = 0; k < runs.size(); ++k) md << "---|";
   md << "---|---|\n";
-  nlohmann::json out = {{"machine", machine()}, {"date", date}, {"runs", runs}, {"exponents", nlohmann::json::object()}};
+  nlohmann::json out = {
+      {"machine", machine()}, {"date", date}, {"runs", runs}, {"exponents", nlohmann::json::object()}};
   for (const auto& [key, label] : stages) {
     std::vector<double> t;
     for (const auto& r : runs) t.push_back(r["seconds"][key].get<double>());
     const double fit = slope(tri, t);
     const std::size_t n = t.size();
-    const double last = n >= 2 ? std::log(std::max(t[n - 1], 1e-12) / std::max(t[n - 2], 1e-12)) / std::log(tri[n - 1] / tri[n - 2])
-                               : std::nan("");
+    const double last =
+        n >= 2 ? std::log(std::max(t[n - 1], 1e-12) / std::max(t[n - 2], 1e-12)) / std::log(tri[n - 1] / tri[n - 2])
+               : std::nan("");
     md << "| " << label << " |";
     char cell[64];
     for (std::size_t k = 0; k < n; ++k) {
@@ -191,7 +198,7 @@ int table(const std::vector<std::string>& inputs, const std::string& mdPath, con
   return 0;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -210,10 +217,14 @@ int main(int argc, char** argv) {
       std::vector<std::string> inputs;
       std::string md, json;
       for (std::size_t k = 1; k < args.size(); ++k) {
-        if (args[k] == "--md" && k + 1 < args.size()) md = args[++k];
-        else if (args[k] == "--json" && k + 1 < args.size()) json = args[++k];
-        else if (args[k].rfind("--", 0) == 0) return fail("unknown option '" + args[k] + "'");
-        else inputs.push_back(args[k]);
+        if (args[k] == "--md" && k + 1 < args.size())
+          md = args[++k];
+        else if (args[k] == "--json" && k + 1 < args.size())
+          json = args[++k];
+        else if (args[k].rfind("--", 0) == 0)
+          return fail("unknown option '" + args[k] + "'");
+        else
+          inputs.push_back(args[k]);
       }
       if (inputs.empty()) return fail("--table needs at least one per-size JSON file");
       return table(inputs, md, json);

@@ -56,9 +56,7 @@ double parseNumber(const std::string& text, const std::string& where) {
   double v = 0;
   try {
     v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  } catch (const std::exception&) { used = 0; }
   ABLMG_REQUIRE(used == text.size() && !text.empty(), where << ": expected a number, got '" << text << "'");
   return v;
 }
@@ -71,8 +69,8 @@ bool parseOnOff(const std::string& text, const std::string& where) {
 }
 
 struct Args {
-  std::string config;  ///< CONFIG.json (a problem of the user's own), or
-  std::string problem; ///< --problem NAME
+  std::string config;   ///< CONFIG.json (a problem of the user's own), or
+  std::string problem;  ///< --problem NAME
   std::map<std::string, double> params;
   adapt::AdaptOptions options;
   std::string outDir = "adapt_out";
@@ -97,13 +95,15 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.params[kv.substr(0, eq)] = parseNumber(kv.substr(eq + 1), "adapt: --param " + kv.substr(0, eq));
     } else if (key == "--cycles") {
       const double c = parseNumber(value(), "adapt: --cycles");
-      ABLMG_REQUIRE(c >= 1 && c <= 1000 && c == std::floor(c), "adapt: --cycles must be an integer in 1..1000, got " << c);
+      ABLMG_REQUIRE(c >= 1 && c <= 1000 && c == std::floor(c),
+                    "adapt: --cycles must be an integer in 1..1000, got " << c);
       a.options.cycles = int(c);
     } else if (key == "--target-vertices") {
       a.options.targetVertices.clear();
       std::stringstream ss(value());
       std::string item;
-      while (std::getline(ss, item, ',')) a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
+      while (std::getline(ss, item, ','))
+        a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
       haveTargets = true;
     } else if (key == "--p") {
       a.options.metric.p = parseNumber(value(), "adapt: --p");
@@ -148,13 +148,18 @@ Args parseArgs(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
     } else {
-      ABLMG_REQUIRE(false, "adapt: unknown argument '" << key
-                                                       << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                                                          "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice --plateau-gain --uniform --vtu --medit --out-dir)");
+      ABLMG_REQUIRE(false,
+                    "adapt: unknown argument '"
+                        << key
+                        << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                           "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
+                           "--plateau-gain --uniform --vtu --medit --out-dir)");
     }
   }
-  ABLMG_REQUIRE(a.problem.empty() != a.config.empty(), "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
-  ABLMG_REQUIRE(a.config.empty() || a.params.empty(), "adapt: --param is for --problem NAME; a config gives \"params\"");
+  ABLMG_REQUIRE(a.problem.empty() != a.config.empty(),
+                "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
+  ABLMG_REQUIRE(a.config.empty() || a.params.empty(),
+                "adapt: --param is for --problem NAME; a config gives \"params\"");
   ABLMG_REQUIRE(haveTargets, "adapt: --target-vertices N1,N2,... is required");
   adapt::validate(a.options);
   return a;
@@ -188,8 +193,8 @@ UniformPoint uniformRun(const adapt::AdaptProblem& p, double n) {
 /// The problem the loop runs, with what the reports say about it.
 struct Problem {
   adapt::AdaptProblem data;
-  std::string name;      ///< library name, or the config file
-  nlohmann::json echo;   ///< {"u": formula, "params": ...} or the config's problem object
+  std::string name;     ///< library name, or the config file
+  nlohmann::json echo;  ///< {"u": formula, "params": ...} or the config's problem object
 };
 
 Problem libraryProblem(const std::string& name, const std::map<std::string, double>& params) {
@@ -202,7 +207,8 @@ Problem libraryProblem(const std::string& name, const std::map<std::string, doub
 Problem configProblem(const std::string& path) {
   const nlohmann::json config = readJsonFile(path);
   requireKeys(config, path, {"domain", "problem", "params"});
-  ABLMG_REQUIRE(config.contains("problem"), path << ": problem: missing (a library name or {\"f\": ..., \"dirichlet\": ...})");
+  ABLMG_REQUIRE(config.contains("problem"),
+                path << ": problem: missing (a library name or {\"f\": ..., \"dirichlet\": ...})");
   ProblemSetup setup = problemFromJson(config, path);
   Problem p;
   p.name = setup.domain ? config["problem"].get<std::string>() : path;
@@ -229,7 +235,8 @@ bool uniformFits(const Domain& domain) {
   return true;
 }
 
-const char* kAdaptHelp = R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
+const char* kAdaptHelp =
+    R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
@@ -272,10 +279,11 @@ int runAdapt(const std::vector<std::string>& argv) {
   for (double n : a.options.targetVertices) std::cout << " " << n;
   std::cout << "\n  hessian " << adapt::toString(a.options.hessian) << ", p " << a.options.metric.p << ", norm "
             << adapt::toString(a.options.metric.norm) << ", shape blend "
-            << (a.options.metric.shapeBlend ? fmt("%g", *a.options.metric.shapeBlend) : std::string("default")) << ", hmin "
-            << a.options.metric.hmin << ", hmax " << a.options.metric.hmax << ", max anisotropy "
-            << a.options.metric.maxAnisotropy << ", hgrad " << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off")
-            << ", lattice " << mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation) << ", seed "
+            << (a.options.metric.shapeBlend ? fmt("%g", *a.options.metric.shapeBlend) : std::string("default"))
+            << ", hmin " << a.options.metric.hmin << ", hmax " << a.options.metric.hmax << ", max anisotropy "
+            << a.options.metric.maxAnisotropy << ", hgrad "
+            << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off") << ", lattice "
+            << mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation) << ", seed "
             << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
 
   // 2. The loop; each cycle prints its line and writes its .vtu.
@@ -306,7 +314,8 @@ int runAdapt(const std::vector<std::string>& argv) {
       auto quality = qualityFields(c.mesh, c.meshMetric);
       for (auto& f : quality.point) points.push_back(std::move(f));
       for (auto& f : quality.cell) cells.push_back(std::move(f));
-      io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points, cells);
+      io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points,
+                   cells);
     }
     if (a.medit) {  // the mesh and the metric computed on it for the next cycle, as MMG/FreeFem++ read them
       const std::string stem = (fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle))).string();
@@ -318,8 +327,9 @@ int runAdapt(const std::vector<std::string>& argv) {
 
   // 3. Rates and the error check.
   if (exact) {
-    std::printf("Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
-                report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
+    std::printf(
+        "Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
+        report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
     std::printf("Errors decrease from the first to the last cycle: %s\n", report.errorsDecrease ? "yes" : "NO");
   }
   std::printf("Estimated interpolation error (recovered Hessian, est=): rate %.3f over the last %d cycles%s\n",
@@ -332,36 +342,52 @@ int runAdapt(const std::vector<std::string>& argv) {
     os.precision(10);
     for (const auto& r : report.cycles)
       os << r.cycle << ',' << r.vertices << ',' << r.triangles << ',' << r.l2 << ',' << r.h1 << ',' << r.l2Interp << ','
-         << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh << ','
-         << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << ',' << r.l2InterpEstimate << '\n';
+         << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh
+         << ',' << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << ',' << r.l2InterpEstimate
+         << '\n';
   });
   auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["problem"] = problem.name;
   j["definition"] = problem.echo;
   if (!a.config.empty()) j["config"] = a.config;
-  j["options"] = {{"target_vertices", a.options.targetVertices},
-                  {"cycles", int(report.cycles.size())},
-                  {"hessian", adapt::toString(a.options.hessian)},
-                  {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
-                  {"norm", adapt::toString(a.options.metric.norm)},
-                  {"shape_blend", a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
-                  {"hmin", a.options.metric.hmin},
-                  {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
-                  {"max_anisotropy", a.options.metric.maxAnisotropy},
-                  {"hgrad", a.options.hgrad},
-                  {"warm_start", a.options.warmStart},
-                  {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
-                  {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
-                  {"seed", a.options.mesh.placement.seed}};
+  j["options"] = {
+      {"target_vertices", a.options.targetVertices},
+      {"cycles", int(report.cycles.size())},
+      {"hessian", adapt::toString(a.options.hessian)},
+      {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
+      {"norm", adapt::toString(a.options.metric.norm)},
+      {"shape_blend",
+       a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
+      {"hmin", a.options.metric.hmin},
+      {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
+      {"max_anisotropy", a.options.metric.maxAnisotropy},
+      {"hgrad", a.options.hgrad},
+      {"warm_start", a.options.warmStart},
+      {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
+      {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
+      {"seed", a.options.mesh.placement.seed}};
   for (const auto& r : report.cycles)
-    j["cycles"].push_back({{"cycle", r.cycle},        {"vertices", r.vertices},   {"triangles", r.triangles},
-                           {"target_vertices", r.targetVertices}, {"l2_error", num(r.l2)}, {"h1_error", num(r.h1)},
-                           {"l2_interp_error", num(r.l2Interp)}, {"l2_interp_estimate", r.l2InterpEstimate}, {"max_vertex_error", num(r.maxVertex)}, {"q_mean", r.qMean},
-                           {"q_min", r.qMin},          {"t_solve", r.tSolve},     {"t_recover", r.tRecover},
-                           {"t_metric", r.tMetric},    {"t_mesh", r.tMesh}});
-  j["rates"] = {{"window", report.rateWindow}, {"l2", num(report.l2Rate)}, {"h1", num(report.h1Rate)},
-                {"l2_interp", num(report.l2InterpRate)}, {"l2_interp_estimate", num(report.l2InterpEstimateRate)}};
+    j["cycles"].push_back({{"cycle", r.cycle},
+                           {"vertices", r.vertices},
+                           {"triangles", r.triangles},
+                           {"target_vertices", r.targetVertices},
+                           {"l2_error", num(r.l2)},
+                           {"h1_error", num(r.h1)},
+                           {"l2_interp_error", num(r.l2Interp)},
+                           {"l2_interp_estimate", r.l2InterpEstimate},
+                           {"max_vertex_error", num(r.maxVertex)},
+                           {"q_mean", r.qMean},
+                           {"q_min", r.qMin},
+                           {"t_solve", r.tSolve},
+                           {"t_recover", r.tRecover},
+                           {"t_metric", r.tMetric},
+                           {"t_mesh", r.tMesh}});
+  j["rates"] = {{"window", report.rateWindow},
+                {"l2", num(report.l2Rate)},
+                {"h1", num(report.h1Rate)},
+                {"l2_interp", num(report.l2InterpRate)},
+                {"l2_interp_estimate", num(report.l2InterpEstimateRate)}};
   j["errors_decrease"] = report.errorsDecrease;
   j["stopped_early"] = report.stoppedEarly;
 
@@ -383,7 +409,8 @@ int runAdapt(const std::vector<std::string>& argv) {
   } else if (a.uniform && exact) {
     io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
     for (const auto& r : report.cycles) {
-      if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5) continue;
+      if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5)
+        continue;
       const auto u = uniformRun(problem.data, r.targetVertices);
       ul.x.push_back(u.vertices);
       ul.y.push_back(u.l2);
@@ -407,16 +434,18 @@ int runAdapt(const std::vector<std::string>& argv) {
          {std::tuple{"h1", &uh, &ah1}, std::tuple{"l2", &ul, &al2}}) {
       const double nu = uniformCurve->x.back(), eu = uniformCurve->y.back();
       const double na = an.empty() ? std::nan("") : adapt::verticesToReach(an, *adaptiveErrors, eu);
-      j["uniform_match"][name] = {{"uniform_vertices", nu}, {"uniform_error", eu}, {"adaptive_vertices", num(na)},
-                                  {"ratio", num(nu / na)}};
+      j["uniform_match"][name] = {
+          {"uniform_vertices", nu}, {"uniform_error", eu}, {"adaptive_vertices", num(na)}, {"ratio", num(nu / na)}};
       if (std::isfinite(na))
-        std::printf("Finest uniform mesh (N=%.0f, %s=%.3e) matched by the adaptive curve at N=%.0f: %.1fx fewer vertices\n",
-                    nu, name, eu, na, nu / na);
+        std::printf(
+            "Finest uniform mesh (N=%.0f, %s=%.3e) matched by the adaptive curve at N=%.0f: %.1fx fewer vertices\n", nu,
+            name, eu, na, nu / na);
       else
         std::printf("Finest uniform mesh (N=%.0f, %s=%.3e) not matched by the adaptive curve\n", nu, name, eu);
     }
   }
-  io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(), [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+  io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(),
+                          [&](std::ostream& os) { os << j.dump(2) << "\n"; });
   const bool plottable = std::all_of(curves.back().y.begin(), curves.back().y.end(), [](double e) { return e > 0; });
   if (plottable)
     io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
@@ -427,8 +456,8 @@ int runAdapt(const std::vector<std::string>& argv) {
   return 0;
 }
 
-} // namespace
+}  // namespace
 
 ABLMG_COMMAND("adapt", "adaptive solve loop (library problem or CONFIG.json): solve, recover, metric, remesh", runAdapt)
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

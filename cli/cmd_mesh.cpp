@@ -21,7 +21,8 @@
 namespace ablmg::cli {
 namespace {
 
-const char* kHelp = R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N]
+const char* kHelp =
+    R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N]
 
 Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/config.md).
   -o PATH          output, format by extension (repeatable; adds to the config's "outputs"):
@@ -84,18 +85,14 @@ int runMesh(const std::vector<std::string>& args) {
       std::size_t used = 0;
       try {
         seed = std::stoll(v, &used);
-      } catch (...) {
-        used = 0;
-      }
+      } catch (...) { used = 0; }
       ABLMG_REQUIRE(used == v.size() && seed >= 0, "--seed: expected a non-negative integer, got '" << v << "'");
     } else if (a == "--max-nodes") {
       const std::string& v = value();
       std::size_t used = 0;
       try {
         maxNodes = std::stoll(v, &used);
-      } catch (...) {
-        used = 0;
-      }
+      } catch (...) { used = 0; }
       ABLMG_REQUIRE(used == v.size() && maxNodes > 0, "--max-nodes: expected a positive integer, got '" << v << "'");
     } else if (!a.empty() && a[0] == '-') {
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg mesh --help)");
@@ -114,7 +111,8 @@ int runMesh(const std::vector<std::string>& args) {
   for (const auto* o : {&cfg.outputs.mesh, &cfg.outputs.vtu, &cfg.outputs.png})
     if (!o->empty()) outputs.push_back(*o);
   if (reportPath.empty()) reportPath = cfg.outputs.report;
-  ABLMG_REQUIRE(!outputs.empty() || !reportPath.empty(), "no output (give -o OUT.mesh|.vtu|.png or \"outputs\" in the config)");
+  ABLMG_REQUIRE(!outputs.empty() || !reportPath.empty(),
+                "no output (give -o OUT.mesh|.vtu|.png or \"outputs\" in the config)");
 
   // 2. Print every option in effect, defaults included.
   nlohmann::json resolved = {{"config", configPath},
@@ -163,8 +161,9 @@ int runMesh(const std::vector<std::string>& args) {
     for (const auto& w : written) std::remove(w.c_str());
     throw;
   }
-  std::cout << "ablmg mesh: " << mesh.numVertices() << " vertices, " << mesh.numTriangles() << " triangles in " << seconds
-            << " s (" << stats["placement"]["steps"] << " steps, residual " << stats["placement"]["finalResidual"];
+  std::cout << "ablmg mesh: " << mesh.numVertices() << " vertices, " << mesh.numTriangles() << " triangles in "
+            << seconds << " s (" << stats["placement"]["steps"] << " steps, residual "
+            << stats["placement"]["finalResidual"];
   if (stats.contains("connect")) std::cout << ", repaired triangles " << stats["connect"]["repairedTriangles"];
   std::cout << ")";
   for (const auto& o : outputs) std::cout << " -> " << o;
@@ -172,7 +171,7 @@ int runMesh(const std::vector<std::string>& args) {
   return 0;
 }
 
-} // namespace
-} // namespace ablmg::cli
+}  // namespace
+}  // namespace ablmg::cli
 
 ABLMG_COMMAND("mesh", "mesh a domain from a JSON config (docs/config.md)", ablmg::cli::runMesh)

@@ -31,7 +31,8 @@
 namespace ablmg::cli {
 namespace {
 
-const char* kHelp = R"(usage: ablmg remesh -in IN.mesh [-sol|-met IN.sol] [-out OUT.mesh] [-hmin H] [-hmax H] [-hgrad G] [-v N]
+const char* kHelp =
+    R"(usage: ablmg remesh -in IN.mesh [-sol|-met IN.sol] [-out OUT.mesh] [-hmin H] [-hmax H] [-hgrad G] [-v N]
 
 Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's mmg2d flags).
   -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
@@ -60,9 +61,7 @@ double parseNumber(const std::string& flag, const std::string& v) {
   double x = 0;
   try {
     x = std::stod(v, &used);
-  } catch (...) {
-    used = 0;
-  }
+  } catch (...) { used = 0; }
   ABLMG_REQUIRE(used == v.size() && std::isfinite(x), flag << ": expected a number, got '" << v << "'");
   return x;
 }
@@ -85,9 +84,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   bool solOk = true;
   try {
     metrics = solRead.get();
-  } catch (...) {
-    solOk = false;
-  }
+  } catch (...) { solOk = false; }
   if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices());
   if (!valid) mesh.requireValid(in);
   return {std::move(mesh), std::move(metrics)};
@@ -108,17 +105,28 @@ int runRemesh(const std::vector<std::string>& args) {
     if (a == "-h" || a == "--help" || a == "-help") {
       std::cout << kHelp;
       return 0;
-    } else if (a == "-in") in = value();
-    else if (a == "-sol" || a == "-met") sol = value();
-    else if (a == "-out") out = value();
-    else if (a == "-hmin") hmin = parseNumber(a, value());
-    else if (a == "-hmax") hmax = parseNumber(a, value());
-    else if (a == "-hgrad") hgrad = parseNumber(a, value());
-    else if (a == "-v") verbose = int(parseNumber(a, value()));
-    else if (a == "--seed") seed = (long long)parseNumber(a, value());
-    else if (a == "--lattice") lattice = mesher::parseLatticeOrientation(value());
-    else if (a == "--report") reportPath = value();
-    else if (!a.empty() && a[0] == '-') ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
+    } else if (a == "-in")
+      in = value();
+    else if (a == "-sol" || a == "-met")
+      sol = value();
+    else if (a == "-out")
+      out = value();
+    else if (a == "-hmin")
+      hmin = parseNumber(a, value());
+    else if (a == "-hmax")
+      hmax = parseNumber(a, value());
+    else if (a == "-hgrad")
+      hgrad = parseNumber(a, value());
+    else if (a == "-v")
+      verbose = int(parseNumber(a, value()));
+    else if (a == "--seed")
+      seed = (long long)parseNumber(a, value());
+    else if (a == "--lattice")
+      lattice = mesher::parseLatticeOrientation(value());
+    else if (a == "--report")
+      reportPath = value();
+    else if (!a.empty() && a[0] == '-')
+      ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
       ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
       in = a;  // mmg2d also takes the input as a positional argument
@@ -132,7 +140,8 @@ int runRemesh(const std::vector<std::string>& args) {
   if (out.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
   ABLMG_REQUIRE(std::filesystem::path(out).extension() == ".mesh", "-out '" << out << "' must end in .mesh");
   const std::string outSol = std::filesystem::path(out).replace_extension(".sol").string();
-  ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol), "--report must not be the output mesh or .sol");
+  ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
+                "--report must not be the output mesh or .sol");
 
   adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and README "Speed"
   options.hmin = hmin;
@@ -143,10 +152,16 @@ int runRemesh(const std::vector<std::string>& args) {
   options.mesh.placement.lattice.orientation = lattice;
   nlohmann::json resolved;
   {
-    resolved = {{"in", in}, {"sol", sol}, {"out", out}, {"outSol", outSol}, {"hmin", hmin},
-                                     {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
-                                     {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)}, {"v", verbose},
-                                     {"options", meshOptionsToJson(options.mesh)}, {"report", reportPath}};
+    resolved = {{"in", in},
+                {"sol", sol},
+                {"out", out},
+                {"outSol", outSol},
+                {"hmin", hmin},
+                {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
+                {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
+                {"v", verbose},
+                {"options", meshOptionsToJson(options.mesh)},
+                {"report", reportPath}};
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
@@ -174,8 +189,9 @@ int runRemesh(const std::vector<std::string>& args) {
       report["inVertices"] = inVertices;
       report["vertices"] = r.mesh.numVertices();
       report["triangles"] = r.mesh.numTriangles();
-      report["seconds"] = {{"read", secondsRead + r.secondsClamp}, {"gradation", r.secondsGradation}, {"domain", r.secondsDomain},
-                           {"backgroundField", r.secondsBackgroundField}, {"meshing", r.secondsMeshing}, {"write", secondsWrite}};
+      report["seconds"] = {
+          {"read", secondsRead + r.secondsClamp},        {"gradation", r.secondsGradation}, {"domain", r.secondsDomain},
+          {"backgroundField", r.secondsBackgroundField}, {"meshing", r.secondsMeshing},     {"write", secondsWrite}};
       report["quality"] = mesher::toJson(mesher::meshQuality(r.mesh, r.metric));
       io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
     } catch (...) {
@@ -191,21 +207,22 @@ int runRemesh(const std::vector<std::string>& args) {
               << ", domain " << r.secondsDomain << ", background field " << r.secondsBackgroundField << ", placement "
               << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
               << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
-              << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency " << p.secondsAdjacency << ", population "
-              << p.secondsPopulation << "), connection " << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass "
-              << r.stats.improve.seconds << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
+              << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency "
+              << p.secondsAdjacency << ", population " << p.secondsPopulation << "), connection "
+              << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass " << r.stats.improve.seconds
+              << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
               << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
-              << " collapses), validation " << r.stats.secondsValidate
-              << ", write " << secondsWrite << "\n";
+              << " collapses), validation " << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
   }
   if (verbose >= 0)
-    std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, " << r.mesh.numTriangles()
-              << " triangles in " << r.secondsMeshing << " s (" << r.clampedMetrics << " metrics clamped, " << r.gradation.corrections
-              << " graded, " << r.stats.connect.repairedTriangles << " repaired triangles) -> " << out << ", " << outSol << "\n";
+    std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, "
+              << r.mesh.numTriangles() << " triangles in " << r.secondsMeshing << " s (" << r.clampedMetrics
+              << " metrics clamped, " << r.gradation.corrections << " graded, " << r.stats.connect.repairedTriangles
+              << " repaired triangles) -> " << out << ", " << outSol << "\n";
   return 0;
 }
 
-} // namespace
-} // namespace ablmg::cli
+}  // namespace
+}  // namespace ablmg::cli
 
 ABLMG_COMMAND("remesh", "remesh IN.mesh to the metric of IN.sol (mmg2d flags)", ablmg::cli::runRemesh)

@@ -112,8 +112,11 @@ int runSolve(const std::vector<std::string>& args) {
       reportPath = (base / config["output"]["report"].get<std::string>()).string();
   }
   json report = {{"config", src},
-                  {"resolved", {{"mesh", meshEcho}, {"problem", setup.echo}, {"solver", {{"ordering", ordering}}},
-                                {"output", {{"vtu", vtuPath}, {"report", reportPath}, {"sol", solPath}}}}}};
+                 {"resolved",
+                  {{"mesh", meshEcho},
+                   {"problem", setup.echo},
+                   {"solver", {{"ordering", ordering}}},
+                   {"output", {{"vtu", vtuPath}, {"report", reportPath}, {"sol", solPath}}}}}};
   std::cout << "ablmg solve: " << report["resolved"].dump() << "\n";
 
   // 3. Assemble and solve.
@@ -156,7 +159,8 @@ int runSolve(const std::vector<std::string>& args) {
   return 0;
 }
 
-} // namespace
-} // namespace ablmg::cli
+}  // namespace
+}  // namespace ablmg::cli
 
-ABLMG_COMMAND("solve", "P1 Poisson solve (CHOLMOD): mesh + problem -> solution .vtu + error report", ablmg::cli::runSolve)
+ABLMG_COMMAND("solve", "P1 Poisson solve (CHOLMOD): mesh + problem -> solution .vtu + error report",
+              ablmg::cli::runSolve)

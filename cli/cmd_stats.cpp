@@ -60,9 +60,7 @@ double positiveNumber(const std::string& flag, const std::string& text) {
   double v = 0;
   try {
     v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  } catch (const std::exception&) { used = 0; }
   ABLMG_REQUIRE(used == text.size() && used > 0 && std::isfinite(v) && v > 0,
                 flag << ": expected a positive number, got '" << text << "'");
   return v;
@@ -76,17 +74,25 @@ Args parse(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(i + k < args.size(), f << ": missing value (" << kUsage << ")");
       return args[i + k];
     };
-    if (f == "--sol") a.sol = value(1), ++i;
+    if (f == "--sol")
+      a.sol = value(1), ++i;
     else if (f == "--json") {
       // A value only if it names a .json file: `--json` alone (or before another flag or the
       // mesh) prints the report as JSON on stdout.
-      if (i + 1 < args.size() && args[i + 1].ends_with(".json") && !args[i + 1].starts_with("-")) a.json = args[++i];
-      else a.jsonToStdout = true;
-    } else if (f == "--metric") a.metricConfig = value(1), ++i;
-    else if (f == "--h") a.h = positiveNumber(f, value(1)), ++i;
-    else if (f == "--e") a.e = positiveNumber(f, value(1)), ++i;
-    else if (f == "--metric-expr") a.expr = {value(1), value(2), value(3)}, i += 3;
-    else if (f.starts_with("-")) ABLMG_REQUIRE(false, "unknown option '" << f << "' (see ablmg stats --help)");
+      if (i + 1 < args.size() && args[i + 1].ends_with(".json") && !args[i + 1].starts_with("-"))
+        a.json = args[++i];
+      else
+        a.jsonToStdout = true;
+    } else if (f == "--metric")
+      a.metricConfig = value(1), ++i;
+    else if (f == "--h")
+      a.h = positiveNumber(f, value(1)), ++i;
+    else if (f == "--e")
+      a.e = positiveNumber(f, value(1)), ++i;
+    else if (f == "--metric-expr")
+      a.expr = {value(1), value(2), value(3)}, i += 3;
+    else if (f.starts_with("-"))
+      ABLMG_REQUIRE(false, "unknown option '" << f << "' (see ablmg stats --help)");
     else {
       ABLMG_REQUIRE(a.mesh.empty(), "more than one mesh given ('" << a.mesh << "', '" << f << "')");
       a.mesh = f;
@@ -108,7 +114,8 @@ int runStats(const std::vector<std::string>& args) {
 
   // 1. Read the mesh; 2D unless some vertex leaves the plane z = 0.
   const io::SurfaceMeshFile file = io::readSurfaceMesh(a.mesh);
-  const bool surface = std::any_of(file.vertices.begin(), file.vertices.end(), [](const auto& p) { return p.z() != 0; });
+  const bool surface =
+      std::any_of(file.vertices.begin(), file.vertices.end(), [](const auto& p) { return p.z() != 0; });
   json report = {{"mesh", a.mesh}, {"e", a.e}};
   mesher::MeshQuality q;
 
@@ -134,7 +141,8 @@ int runStats(const std::vector<std::string>& args) {
       field->evaluate(mesh.vertices, metrics);
       report["metric"] = description + " (from " + a.metricConfig + ")";
     } else if (!a.expr.empty()) {
-      const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, a.expr[0], a.expr[1], a.expr[2], "--metric-expr");
+      const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, a.expr[0], a.expr[1], a.expr[2],
+                                      "--metric-expr");
       field.evaluate(mesh.vertices, metrics);
       report["metric"] = "h1 = " + a.expr[0] + ", h2 = " + a.expr[1] + ", theta = " + a.expr[2];
     } else if (a.h) {
@@ -161,7 +169,7 @@ int runStats(const std::vector<std::string>& args) {
   return 0;
 }
 
-} // namespace
-} // namespace ablmg::cli
+}  // namespace
+}  // namespace ablmg::cli
 
 ABLMG_COMMAND("stats", "quality report of a mesh: metric edge lengths, element quality", ablmg::cli::runStats)

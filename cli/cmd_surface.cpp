@@ -70,10 +70,9 @@ double parsePositive(const std::string& v, const std::string& what) {
   double x = 0;
   try {
     x = std::stod(v, &used);
-  } catch (...) {
-    used = 0;
-  }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x) && x > 0, what << ": expected a positive number, got '" << v << "'");
+  } catch (...) { used = 0; }
+  ABLMG_REQUIRE(used == v.size() && std::isfinite(x) && x > 0,
+                what << ": expected a positive number, got '" << v << "'");
   return x;
 }
 
@@ -82,7 +81,8 @@ void checkOutput(const std::string& path, const char* ext, const char* flag) {
   namespace fs = std::filesystem;
   ABLMG_REQUIRE(fs::path(path).extension() == ext, "surface: " << flag << " '" << path << "' must end in " << ext);
   const fs::path dir = fs::path(path).parent_path();
-  ABLMG_REQUIRE(dir.empty() || fs::is_directory(dir), "surface: " << flag << " '" << path << "': folder " << dir.string() << " does not exist");
+  ABLMG_REQUIRE(dir.empty() || fs::is_directory(dir),
+                "surface: " << flag << " '" << path << "': folder " << dir.string() << " does not exist");
 }
 
 struct SurfaceSetup {
@@ -119,7 +119,8 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
     s.surface = mesher::makeBuiltinSurface(s.name);
   } else {
     const std::string w = path + ": surface";
-    ABLMG_REQUIRE(sj.is_object(), w << ": expected a built-in name or an object {x, y, z, u, v}, got " << sj.type_name());
+    ABLMG_REQUIRE(sj.is_object(),
+                  w << ": expected a built-in name or an object {x, y, z, u, v}, got " << sj.type_name());
     for (const auto& [key, value] : sj.items())
       ABLMG_REQUIRE(key == "x" || key == "y" || key == "z" || key == "u" || key == "v" || key == "weld",
                     w << ": unknown key '" << key << "' (valid: x, y, z, u, v, weld)");
@@ -131,7 +132,8 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
     std::string e[3];
     const char* names[3] = {"x", "y", "z"};
     for (int k = 0; k < 3; ++k) {
-      ABLMG_REQUIRE(sj.contains(names[k]) && sj[names[k]].is_string(), w << "." << names[k] << ": expected an expression string in u, v");
+      ABLMG_REQUIRE(sj.contains(names[k]) && sj[names[k]].is_string(),
+                    w << "." << names[k] << ": expected an expression string in u, v");
       e[k] = sj[names[k]].get<std::string>();
     }
     double range[2][2];
@@ -144,7 +146,8 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
       ABLMG_REQUIRE(std::isfinite(range[k][0]) && std::isfinite(range[k][1]) && range[k][0] < range[k][1],
                     w << "." << uv[k] << ": expected min < max, got [" << range[k][0] << ", " << range[k][1] << "]");
     }
-    s.surface = mesher::makeExpressionSurface(e[0], e[1], e[2], range[0][0], range[1][0], range[0][1], range[1][1], w, weld);
+    s.surface =
+        mesher::makeExpressionSurface(e[0], e[1], e[2], range[0][0], range[1][0], range[0][1], range[1][1], w, weld);
     s.name = std::filesystem::path(path).stem().string();
   }
   if (j.contains("h")) {
@@ -153,7 +156,8 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
     s.h = j["h"].get<double>();
   }
   if (j.contains("seed")) {
-    ABLMG_REQUIRE(j["seed"].is_number_integer() && j["seed"].get<long long>() >= 0, path << ": seed: expected an integer >= 0");
+    ABLMG_REQUIRE(j["seed"].is_number_integer() && j["seed"].get<long long>() >= 0,
+                  path << ": seed: expected an integer >= 0");
     s.seed = j["seed"].get<long long>();
   }
   if (j.contains("options")) applyMeshOptions(j["options"], s.options, path + ": options");
@@ -225,8 +229,11 @@ int runSurface(const std::vector<std::string>& args) {
   const mesher::Metric3Field m3 = mesher::isotropicMetric3(setup.h);
   const mesher::InducedMetricField m2(*setup.surface, m3);
   setup.options.placement.seed = std::uint64_t(setup.seed);
-  const json optionsEcho = {{"surface", setup.name}, {"description", setup.surface->description()}, {"h", setup.h},
-                            {"seed", setup.seed}, {"mesher", meshOptionsToJson(setup.options)}};
+  const json optionsEcho = {{"surface", setup.name},
+                            {"description", setup.surface->description()},
+                            {"h", setup.h},
+                            {"seed", setup.seed},
+                            {"mesher", meshOptionsToJson(setup.options)}};
   std::cout << "ablmg surface: options " << optionsEcho.dump() << "\n";
 
   // Mesh (u,v) with M2, map to 3D, measure.
@@ -242,16 +249,28 @@ int runSurface(const std::vector<std::string>& args) {
 
   std::vector<std::string> written;
   try {
-    if (!meshPath.empty()) { io::writeSurfaceMesh(meshPath, s.vertices, s.triangles); written.push_back(meshPath); }
+    if (!meshPath.empty()) {
+      io::writeSurfaceMesh(meshPath, s.vertices, s.triangles);
+      written.push_back(meshPath);
+    }
     if (!vtuPath.empty()) {
       io::writeVtu(vtuPath, s.vertices, s.triangles, {}, {io::Field{"lee_quality", 1, alpha}});
       written.push_back(vtuPath);
     }
-    if (!stlPath.empty()) { io::writeStl(stlPath, s.vertices, s.triangles, setup.name); written.push_back(stlPath); }
-    if (!pngPath.empty()) { io::drawMesh(pngPath, r.mesh, alpha, "Lee quality"); written.push_back(pngPath); }
-    if (!png3dPath.empty()) { io::drawSurface(png3dPath, s.vertices, s.triangles); written.push_back(png3dPath); }
+    if (!stlPath.empty()) {
+      io::writeStl(stlPath, s.vertices, s.triangles, setup.name);
+      written.push_back(stlPath);
+    }
+    if (!pngPath.empty()) {
+      io::drawMesh(pngPath, r.mesh, alpha, "Lee quality");
+      written.push_back(pngPath);
+    }
+    if (!png3dPath.empty()) {
+      io::drawSurface(png3dPath, s.vertices, s.triangles);
+      written.push_back(png3dPath);
+    }
     if (!jsonPath.empty()) {
-      json j = {{"options", optionsEcho}, {"seconds", seconds}, {"quality", mesher::toJson(q)},
+      json j = {{"options", optionsEcho},          {"seconds", seconds},        {"quality", mesher::toJson(q)},
                 {"boundary_edges", boundaryEdges}, {"welded_vertices", welded}, {"outputs", written}};
       io::writeFileAtomically(jsonPath, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
       written.push_back(jsonPath);
@@ -260,16 +279,16 @@ int runSurface(const std::vector<std::string>& args) {
     for (const auto& w : written) std::remove(w.c_str());
     throw;
   }
-  std::cout << "ablmg surface: " << setup.name << ", h = " << setup.h << ": " << q.vertices << " vertices, " << q.triangles
-            << " triangles in " << seconds << " s; manifold: yes; boundary edges: " << boundaryEdges
+  std::cout << "ablmg surface: " << setup.name << ", h = " << setup.h << ": " << q.vertices << " vertices, "
+            << q.triangles << " triangles in " << seconds << " s; manifold: yes; boundary edges: " << boundaryEdges
             << (welded > 0 ? "; seams welded: " + std::to_string(welded) + " vertices merged" : std::string()) << "\n"
             << mesher::toText(q);
   for (const auto& w : written) std::cout << "  -> " << w << "\n";
   return 0;
 }
 
-} // namespace
-} // namespace ablmg::cli
+}  // namespace
+}  // namespace ablmg::cli
 
 ABLMG_COMMAND("surface", "mesh a parametric surface (paper §5-6): --list, --surface NAME --h H, or CONFIG.json",
               ablmg::cli::runSurface)

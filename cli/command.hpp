@@ -20,7 +20,7 @@ struct Command {
 bool registerCommand(const Command& c);
 const std::vector<Command>& commands();
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli
 
 #define ABLMG_CONCAT2(a, b) a##b
 #define ABLMG_CONCAT(a, b) ABLMG_CONCAT2(a, b)

@@ -150,12 +150,16 @@ void applyBindings(const json& j, S& s, const std::vector<Binding<S>>& bindings,
           } else {
             requireType(v, v.is_number_integer() || v.is_number_unsigned(), "integer", wk);
             if constexpr (std::is_unsigned_v<T>) {
-              ABLMG_REQUIRE(v.is_number_unsigned() || v.get<long long>() >= 0, wk.str() << ": must be ≥ 0, got " << v.dump());
+              ABLMG_REQUIRE(v.is_number_unsigned() || v.get<long long>() >= 0,
+                            wk.str() << ": must be ≥ 0, got " << v.dump());
               s.*member = v.get<T>();
             } else {
-              const long long x = v.is_number_unsigned() && v.get<unsigned long long>() > (unsigned long long)LLONG_MAX ? LLONG_MAX : v.get<long long>();
-              ABLMG_REQUIRE(x >= (long long)std::numeric_limits<T>::min() && x <= (long long)std::numeric_limits<T>::max(),
-                            wk.str() << ": " << v.dump() << " is out of range");
+              const long long x = v.is_number_unsigned() && v.get<unsigned long long>() > (unsigned long long)LLONG_MAX
+                                      ? LLONG_MAX
+                                      : v.get<long long>();
+              ABLMG_REQUIRE(
+                  x >= (long long)std::numeric_limits<T>::min() && x <= (long long)std::numeric_limits<T>::max(),
+                  wk.str() << ": " << v.dump() << " is out of range");
               s.*member = T(x);
             }
           }
@@ -247,7 +251,8 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
         if (T[l].is_number_integer()) {
           loops[l].tags.assign(loops[l].points.size(), T[l].get<int>());
         } else {
-          requireType(T[l], T[l].is_array() && T[l].size() == loops[l].points.size(), "integer or one integer per segment", wt[l]);
+          requireType(T[l], T[l].is_array() && T[l].size() == loops[l].points.size(),
+                      "integer or one integer per segment", wt[l]);
           for (std::size_t k = 0; k < T[l].size(); ++k) {
             requireType(T[l][k], T[l][k].is_number_integer(), "integer", wt[l][k]);
             loops[l].tags.push_back(T[l][k].get<int>());
@@ -260,15 +265,14 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
     loops.erase(loops.begin());
     try {
       return Domain(std::move(outer), std::move(loops));
-    } catch (const InputError& e) {
-      throw InputError(wl.str() + ": " + e.what());
-    }
+    } catch (const InputError& e) { throw InputError(wl.str() + ": " + e.what()); }
   }
   ABLMG_REQUIRE(false, (w / j.begin().key()).str() << ": unknown key (expected one of rectangle, disk, poly, loops)");
   return {};
 }
 
-std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const std::string& baseDir, std::string& description) {
+std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const std::string& baseDir,
+                                         std::string& description) {
   requireObject(j, w);
   const auto expr = [&](const char* key, const char* fallback) {
     return j.contains(key) ? getString(j[key], w / key) : std::string(fallback);
@@ -287,7 +291,8 @@ std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const st
   const std::string source = w.str();
   if (j.contains("m11") || j.contains("m12") || j.contains("m22")) {
     checkKeys(j, {"m11", "m12", "m22"}, w);
-    ABLMG_REQUIRE(j.contains("m11") && j.contains("m22"), w.str() << ": a tensor metric needs m11 and m22 (m12 defaults to 0)");
+    ABLMG_REQUIRE(j.contains("m11") && j.contains("m22"),
+                  w.str() << ": a tensor metric needs m11 and m22 (m12 defaults to 0)");
     const auto a = expr("m11", ""), b = expr("m12", "0"), c = expr("m22", "");
     description = "analytic tensor m11=" + a + " m12=" + b + " m22=" + c;
     return std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Tensor, a, b, c, source);
@@ -305,7 +310,7 @@ std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const st
   return std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Sizes, h1, h2, th, source);
 }
 
-} // namespace
+}  // namespace
 
 Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const std::string& baseDir) {
   return parseDomain(j, Where{file, "domain"}, baseDir);
@@ -313,7 +318,8 @@ Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const s
 
 void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where) {
   const std::size_t colon = where.find(": ");
-  const Where w = colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
+  const Where w =
+      colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
   requireObject(j, w);
   checkKeys(j, {"placement", "connect", "improve"}, w);
   if (j.contains("placement")) {
@@ -325,9 +331,7 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       const std::string name = getString(placement["latticeOrientation"], wl);
       try {
         options.placement.lattice.orientation = mesher::parseLatticeOrientation(name);
-      } catch (const InputError& e) {
-        ABLMG_REQUIRE(false, wl.str() << ": " << e.what());
-      }
+      } catch (const InputError& e) { ABLMG_REQUIRE(false, wl.str() << ": " << e.what()); }
       placement.erase("latticeOrientation");
     }
     if (placement.contains("pairDistance")) {
@@ -335,9 +339,7 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       const std::string name = getString(placement["pairDistance"], wp);
       try {
         options.placement.pairDistance = mesher::parsePairDistance(name);
-      } catch (const InputError& e) {
-        ABLMG_REQUIRE(false, wp.str() << ": " << e.what());
-      }
+      } catch (const InputError& e) { ABLMG_REQUIRE(false, wp.str() << ": " << e.what()); }
       placement.erase("pairDistance");
     }
     applyBindings(placement, options.placement, placementBindings(), w / "placement");
@@ -347,9 +349,7 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
     applyBindings(j["improve"], options.improve, improveBindings(), w / "improve");
     try {
       mesher::requireValid(options.improve);
-    } catch (const InputError& e) {
-      ABLMG_REQUIRE(false, (w / "improve").str() << ": " << e.what());
-    }
+    } catch (const InputError& e) { ABLMG_REQUIRE(false, (w / "improve").str() << ": " << e.what()); }
   }
 }
 
@@ -383,7 +383,7 @@ std::string readText(const std::string& path) {
   ss << is.rdbuf();
   return ss.str();
 }
-} // namespace
+}  // namespace
 
 std::unique_ptr<MetricField> loadMetricConfig(const std::string& path, std::string& description) {
   const json j = parseJsonText(readText(path), path);
@@ -407,7 +407,9 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
     const Where wo = top / "outputs";
     const json& o = requireObject(j["outputs"], wo);
     checkKeys(o, {"mesh", "vtu", "png", "report"}, wo);
-    const auto get = [&](const char* k) { return o.contains(k) ? resolve(getString(o[k], wo / k), baseDir) : std::string(); };
+    const auto get = [&](const char* k) {
+      return o.contains(k) ? resolve(getString(o[k], wo / k), baseDir) : std::string();
+    };
     c.outputs = {get("mesh"), get("vtu"), get("png"), get("report")};
   }
   c.domain = parseDomain(j["domain"], top / "domain", baseDir);
@@ -419,4 +421,4 @@ Config loadConfig(const std::string& path) {
   return parseConfig(readText(path), path, std::filesystem::path(path).parent_path().string());
 }
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

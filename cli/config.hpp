@@ -66,4 +66,4 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
 /// Every option with its value (defaults included), same layout as applyMeshOptions reads.
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options);
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

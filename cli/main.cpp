@@ -36,11 +36,12 @@ const std::vector<Command>& commands() {
   return r;
 }
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli
 
 static void usage(std::ostream& os) {
   os << "usage: ablmg <command> [options]   (ablmg <command> --help for details)\n\ncommands:\n";
-  for (const auto& c : ablmg::cli::commands()) os << "  " << c.name << std::string(10 - std::min<size_t>(9, std::strlen(c.name)), ' ') << c.summary << "\n";
+  for (const auto& c : ablmg::cli::commands())
+    os << "  " << c.name << std::string(10 - std::min<size_t>(9, std::strlen(c.name)), ' ') << c.summary << "\n";
 }
 
 /// Threads of this process that are running now (in ablmg-full, OpenBLAS, pulled in by

@@ -29,7 +29,8 @@ QualityFields qualityFields(const Mesh2& mesh, std::span<const Metric2> metric) 
   f.cell.push_back({"quality", 1, mesher::elementQualities(mesh, metric)});
   const auto edges = mesh.edges();
   const auto lengths = mesher::edgeMetricLengths(mesh, metric);
-  io::Field lo{"edge_length_min", 1, std::vector<double>(mesh.vertices.size(), std::numeric_limits<double>::infinity())};
+  io::Field lo{"edge_length_min", 1,
+               std::vector<double>(mesh.vertices.size(), std::numeric_limits<double>::infinity())};
   io::Field hi{"edge_length_max", 1, std::vector<double>(mesh.vertices.size(), 0.0)};
   for (std::size_t e = 0; e < edges.size(); ++e)
     for (int v : {edges[e][0], edges[e][1]}) {
@@ -43,12 +44,14 @@ QualityFields qualityFields(const Mesh2& mesh, std::span<const Metric2> metric) 
   return f;
 }
 
-void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh, const std::vector<Metric2>& metric) {
+void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh,
+                     const std::vector<Metric2>& metric) {
   checkOutputPath(path, path);
   const std::string ext = extensionOf(path);
   if (ext == ".mesh") {
     io::writeMesh(path, mesh);
-    if (metric.size() == mesh.vertices.size()) io::writeSol(std::filesystem::path(path).replace_extension(".sol").string(), metric);
+    if (metric.size() == mesh.vertices.size())
+      io::writeSol(std::filesystem::path(path).replace_extension(".sol").string(), metric);
   } else if (ext == ".vtu") {
     std::vector<io::Field> point, cell;
     if (metric.size() == mesh.vertices.size()) {
@@ -60,9 +63,10 @@ void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2&
     io::writeVtu(path, mesh, point, cell);
   } else {
     const bool hasMetric = metric.size() == mesh.vertices.size();
-    io::drawBubbles(path, domain, hasMetric ? std::span<const Vec2>(mesh.vertices) : std::span<const Vec2>(), hasMetric ? std::span<const Metric2>(metric) : std::span<const Metric2>(),
+    io::drawBubbles(path, domain, hasMetric ? std::span<const Vec2>(mesh.vertices) : std::span<const Vec2>(),
+                    hasMetric ? std::span<const Metric2>(metric) : std::span<const Metric2>(),
                     mesh.triangles.empty() ? nullptr : &mesh);
   }
 }
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

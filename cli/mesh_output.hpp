@@ -21,7 +21,8 @@ namespace ablmg::cli {
 ///          mesh edges and the domain boundary.
 /// A mesh without triangles (bubbles only) is written as points. Atomic; throws InputError for
 /// an unknown extension (before anything is written if called through checkOutputPath first).
-void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh, const std::vector<Metric2>& metric);
+void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh,
+                     const std::vector<Metric2>& metric);
 /// The fields that colour a mesh by how well it follows its metric (issue 9; ParaView): cell
 /// "quality" (q of mesher/quality.hpp, 1 = unit equilateral) and point "edge_length_min" /
 /// "edge_length_max" (the shortest and longest metric length, eq. (3), of the edges at the
@@ -34,4 +35,4 @@ QualityFields qualityFields(const Mesh2& mesh, std::span<const Metric2> metric);
 /// Throws InputError unless `path` ends in .mesh, .vtu or .png (`what` names the flag or key).
 void checkOutputPath(const std::string& path, const std::string& what);
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

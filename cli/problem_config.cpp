@@ -54,23 +54,19 @@ int tagOf(const std::string& key, const std::string& where) {
   int tag = 0;
   try {
     tag = std::stoi(key, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  } catch (const std::exception&) { used = 0; }
   ABLMG_REQUIRE(used == key.size() && !key.empty(), where << ": boundary tag '" << key << "' is not an integer");
   return tag;
 }
 
-} // namespace
+}  // namespace
 
 json readJsonFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   ABLMG_REQUIRE(in, path << ": cannot open");
   try {
     return json::parse(in);
-  } catch (const json::parse_error& e) {
-    ABLMG_REQUIRE(false, path << ": invalid JSON: " << e.what());
-  }
+  } catch (const json::parse_error& e) { ABLMG_REQUIRE(false, path << ": invalid JSON: " << e.what()); }
   return {};
 }
 
@@ -145,4 +141,4 @@ ProblemSetup problemFromJson(const json& config, const std::string& src) {
   return s;
 }
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

@@ -42,4 +42,4 @@ nlohmann::json readJsonFile(const std::string& path);
 /// or when `j` is not an object.
 void requireKeys(const nlohmann::json& j, const std::string& where, std::initializer_list<const char*> allowed);
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

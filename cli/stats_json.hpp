@@ -11,4 +11,4 @@ nlohmann::json placementStatsJson(const mesher::PlacementStats& s);
 /// {"placement": ..., "connect": ..., "improve": ..., "secondsValidate": ...}
 nlohmann::json meshStatsJson(const mesher::MeshStats& s);
 
-} // namespace ablmg::cli
+}  // namespace ablmg::cli

@@ -53,4 +53,4 @@ void BucketGrid::insert(int id, const Vec2& p) {
   head_[c] = id;
 }
 
-} // namespace ablmg
+}  // namespace ablmg

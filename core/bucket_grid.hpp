@@ -17,7 +17,7 @@
 namespace ablmg {
 
 class BucketGrid {
-public:
+ public:
   BucketGrid() = default;
   /// Grid over [lo, hi] with square cells of side ≈ cellSize (> 0); the number of cells is
   /// capped at maxCells (the cell size grows to respect the cap).
@@ -43,7 +43,8 @@ public:
   void clearIncremental(int capacityHint = 0);
   void insert(int id, const Vec2& p);
   /// Calls f(id) for every id in cells overlapping the box [p − r, p + r] (incremental form).
-  template <class F> void forEachIncremental(const Vec2& p, double r, F&& f) const {
+  template <class F>
+  void forEachIncremental(const Vec2& p, double r, F&& f) const {
     const int x0 = cellX(p.x() - r), x1 = cellX(p.x() + r), y0 = cellY(p.y() - r), y1 = cellY(p.y() + r);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
@@ -51,12 +52,14 @@ public:
   }
   /// Whether pred(id) holds for some id in cells overlapping the box [p − r, p + r]
   /// (incremental form); stops at the first one.
-  template <class Pred> bool anyIncremental(const Vec2& p, double r, Pred&& pred) const {
+  template <class Pred>
+  bool anyIncremental(const Vec2& p, double r, Pred&& pred) const {
     return anyIncremental(p, r, r, pred);
   }
   /// The same over the box p ± (rx, ry): an anisotropic query (the bounding box of a thin
   /// metric ellipse) visits far fewer cells than the square of its long half-axis.
-  template <class Pred> bool anyIncremental(const Vec2& p, double rx, double ry, Pred&& pred) const {
+  template <class Pred>
+  bool anyIncremental(const Vec2& p, double rx, double ry, Pred&& pred) const {
     const int x0 = cellX(p.x() - rx), x1 = cellX(p.x() + rx), y0 = cellY(p.y() - ry), y1 = cellY(p.y() + ry);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
@@ -65,20 +68,22 @@ public:
     return false;
   }
   /// Calls f(id) for every id in cells overlapping the box p ± (rx, ry) (static form).
-  template <class F> void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
+  template <class F>
+  void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
     const int x0 = cellX(p.x() - rx), x1 = cellX(p.x() + rx), y0 = cellY(p.y() - ry), y1 = cellY(p.y() + ry);
     for (int y = y0; y <= y1; ++y)
       for (int k = offsets_[y * nx_ + x0], e = offsets_[y * nx_ + x1 + 1]; k < e; ++k) f(ids_[k]);
   }
   /// Calls f(id) for every id in cells overlapping the box [p − r, p + r] (static form).
-  template <class F> void forEach(const Vec2& p, double r, F&& f) const {
+  template <class F>
+  void forEach(const Vec2& p, double r, F&& f) const {
     const int x0 = cellX(p.x() - r), x1 = cellX(p.x() + r), y0 = cellY(p.y() - r), y1 = cellY(p.y() + r);
     for (int y = y0; y <= y1; ++y)
       for (int x = x0; x <= x1; ++x)
         for (int k = offsets_[y * nx_ + x], e = offsets_[y * nx_ + x + 1]; k < e; ++k) f(ids_[k]);
   }
 
-private:
+ private:
   Vec2 lo_{0, 0};
   double cs_ = 1;
   int nx_ = 1, ny_ = 1;
@@ -86,4 +91,4 @@ private:
   std::vector<int> head_, next_;
 };
 
-} // namespace ablmg
+}  // namespace ablmg

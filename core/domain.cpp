@@ -23,8 +23,8 @@ void reverseLoop(BoundaryLoop& loop) {
   std::vector<Vec2> pts(n);
   std::vector<int> tags(n);
   for (std::size_t k = 0; k < n; ++k) {
-    pts[k] = loop.points[(n - k) % n];          // p0, p_{n−1}, ..., p1
-    tags[k] = loop.tags[(2 * n - k - 1) % n];   // segment (p_{n−k} → p_{n−k−1}) was tag[n−k−1]
+    pts[k] = loop.points[(n - k) % n];         // p0, p_{n−1}, ..., p1
+    tags[k] = loop.tags[(2 * n - k - 1) % n];  // segment (p_{n−k} → p_{n−k−1}) was tag[n−k−1]
   }
   loop.points = std::move(pts);
   loop.tags = std::move(tags);
@@ -32,18 +32,19 @@ void reverseLoop(BoundaryLoop& loop) {
 
 const char* loopName(std::size_t l) { return l == 0 ? "outer loop" : "hole"; }
 
-} // namespace
+}  // namespace
 
 Domain::Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes) {
   loops_.push_back(std::move(outer));
   for (auto& h : holes) loops_.push_back(std::move(h));
   for (std::size_t l = 0; l < loops_.size(); ++l) {
     auto& loop = loops_[l];
-    ABLMG_REQUIRE(loop.points.size() >= 3,
-                  "domain: " << loopName(l) << " " << l << " has " << loop.points.size() << " points (need at least 3)");
+    ABLMG_REQUIRE(loop.points.size() >= 3, "domain: " << loopName(l) << " " << l << " has " << loop.points.size()
+                                                      << " points (need at least 3)");
     if (loop.tags.empty()) loop.tags.assign(loop.points.size(), 1);
-    ABLMG_REQUIRE(loop.tags.size() == loop.points.size(),
-                  "domain: loop " << l << " has " << loop.points.size() << " points but " << loop.tags.size() << " segment tags");
+    ABLMG_REQUIRE(loop.tags.size() == loop.points.size(), "domain: loop " << l << " has " << loop.points.size()
+                                                                          << " points but " << loop.tags.size()
+                                                                          << " segment tags");
     for (std::size_t k = 0; k < loop.points.size(); ++k)
       ABLMG_REQUIRE(std::isfinite(loop.points[k].x()) && std::isfinite(loop.points[k].y()),
                     "domain: loop " << l << " point " << k << " has a non-finite coordinate");
@@ -55,8 +56,9 @@ Domain::Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes) {
 }
 
 Domain Domain::rectangle(double x0, double y0, double x1, double y1) {
-  ABLMG_REQUIRE(std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1) && x1 > x0 && y1 > y0,
-                "domain: rectangle needs finite x0 < x1 and y0 < y1 (got " << x0 << "," << y0 << "," << x1 << "," << y1 << ")");
+  ABLMG_REQUIRE(
+      std::isfinite(x0) && std::isfinite(y0) && std::isfinite(x1) && std::isfinite(y1) && x1 > x0 && y1 > y0,
+      "domain: rectangle needs finite x0 < x1 and y0 < y1 (got " << x0 << "," << y0 << "," << x1 << "," << y1 << ")");
   BoundaryLoop loop;
   loop.points = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
   loop.tags = {1, 2, 3, 4};
@@ -65,7 +67,8 @@ Domain Domain::rectangle(double x0, double y0, double x1, double y1) {
 
 Domain Domain::disk(Vec2 centre, double radius, int samples) {
   ABLMG_REQUIRE(std::isfinite(radius) && radius > 0, "domain: disk radius must be positive (got " << radius << ")");
-  ABLMG_REQUIRE(samples >= 8 && samples <= 10000000, "domain: disk samples must be in [8, 1e7] (got " << samples << ")");
+  ABLMG_REQUIRE(samples >= 8 && samples <= 10000000,
+                "domain: disk samples must be in [8, 1e7] (got " << samples << ")");
   BoundaryLoop loop;
   loop.smooth = true;
   for (int k = 0; k < samples; ++k) {
@@ -103,7 +106,8 @@ bool Domain::contains(const Vec2& p) const {
       const bool up = a.y() <= p.y() && p.y() < b.y();
       const bool down = b.y() <= p.y() && p.y() < a.y();
       if (!up && !down) {
-        if (a.y() == p.y() && b.y() == p.y() && std::min(a.x(), b.x()) <= p.x()) return true;  // on a horizontal segment
+        if (a.y() == p.y() && b.y() == p.y() && std::min(a.x(), b.x()) <= p.x())
+          return true;  // on a horizontal segment
         continue;
       }
       const int o = orient2d(a, b, p);
@@ -168,7 +172,8 @@ void Domain::validate() const {
   // Sweep in x: only segments whose x-ranges overlap are tested against each other.
   std::vector<int> order(segs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
-  std::sort(order.begin(), order.end(), [&](int i, int j) { return segs[i].xmin < segs[j].xmin || (segs[i].xmin == segs[j].xmin && i < j); });
+  std::sort(order.begin(), order.end(),
+            [&](int i, int j) { return segs[i].xmin < segs[j].xmin || (segs[i].xmin == segs[j].xmin && i < j); });
   for (std::size_t oi = 0; oi < order.size(); ++oi) {
     const Seg& s = segs[order[oi]];
     for (std::size_t oj = oi + 1; oj < order.size() && segs[order[oj]].xmin <= s.xmax; ++oj) {
@@ -198,4 +203,4 @@ void Domain::validate() const {
   ABLMG_REQUIRE(area() > 0, "domain: enclosed area is not positive (" << area() << ")");
 }
 
-} // namespace ablmg
+}  // namespace ablmg

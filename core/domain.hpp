@@ -24,7 +24,7 @@ struct BoundaryLoop {
 };
 
 class Domain {
-public:
+ public:
   Domain() = default;
   /// Builds and validates (see validate()). Throws InputError naming the bad loop/segment.
   Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes = {});
@@ -55,8 +55,8 @@ public:
   /// tag vectors of the wrong size. The message names loop and segment index.
   void validate() const;
 
-private:
+ private:
   std::vector<BoundaryLoop> loops_;
 };
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -43,7 +43,8 @@ BoundaryChain chainByCounting(const Mesh2& mesh, const std::string& name) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
       if (trianglesOf(std::min(a, b), std::max(a, b)) != 1) continue;
-      ABLMG_REQUIRE(c.next[sz(a)] < 0, name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
+      ABLMG_REQUIRE(c.next[sz(a)] < 0,
+                    name << ": boundary vertex " << a + 1 << " starts two boundary edges (non-manifold boundary)");
       const auto it = refs.find(key(std::min(a, b), std::max(a, b)));
       c.next[sz(a)] = b;
       c.nextRef[sz(a)] = it == refs.end() ? 1 : it->second;
@@ -51,7 +52,7 @@ BoundaryChain chainByCounting(const Mesh2& mesh, const std::string& name) {
   return c;
 }
 
-} // namespace
+}  // namespace
 
 // A valid mesh's one-triangle edges are exactly its boundaryEdges, listed once and oriented as
 // in their triangle, so the chain comes straight from them. A vertex starting two of them
@@ -101,9 +102,7 @@ Domain domainFromMeshBoundary(const Mesh2& mesh, const std::string& name) {
   loops.erase(loops.begin() + long(outer));
   try {
     return Domain(std::move(o), std::move(loops));
-  } catch (const InputError& e) {
-    throw InputError(name + ": boundary: " + e.what());
-  }
+  } catch (const InputError& e) { throw InputError(name + ": boundary: " + e.what()); }
 }
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -24,4 +24,4 @@ namespace ablmg {
 /// a loop is not closed or two loops touch, or the loops do not form a valid Domain.
 Domain domainFromMeshBoundary(const Mesh2& mesh, const std::string& name = "mesh");
 
-} // namespace ablmg
+}  // namespace ablmg

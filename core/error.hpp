@@ -14,38 +14,38 @@
 namespace ablmg {
 
 class Error : public std::runtime_error {
-public:
+ public:
   using std::runtime_error::runtime_error;
 };
 
 class InputError : public Error {
-public:
+ public:
   using Error::Error;
 };
 
-} // namespace ablmg
+}  // namespace ablmg
 
-#define ABLMG_REQUIRE(cond, msg)                                                        \
-  do {                                                                                  \
-    if (!(cond)) {                                                                      \
-      std::ostringstream ablmg_os_;                                                     \
-      ablmg_os_ << msg;                                                                 \
-      throw ::ablmg::InputError(ablmg_os_.str());                                       \
-    }                                                                                   \
+#define ABLMG_REQUIRE(cond, msg)                  \
+  do {                                            \
+    if (!(cond)) {                                \
+      std::ostringstream ablmg_os_;               \
+      ablmg_os_ << msg;                           \
+      throw ::ablmg::InputError(ablmg_os_.str()); \
+    }                                             \
   } while (0)
 
-#define ABLMG_FAIL(msg)                                                                 \
-  do {                                                                                  \
-    std::ostringstream ablmg_os_;                                                       \
-    ablmg_os_ << msg;                                                                   \
-    throw ::ablmg::Error(ablmg_os_.str());                                              \
+#define ABLMG_FAIL(msg)                    \
+  do {                                     \
+    std::ostringstream ablmg_os_;          \
+    ablmg_os_ << msg;                      \
+    throw ::ablmg::Error(ablmg_os_.str()); \
   } while (0)
 
 #ifdef NDEBUG
 #define ABLMG_ASSERT(cond, msg) ((void)0)
 #else
-#define ABLMG_ASSERT(cond, msg)                                                         \
-  do {                                                                                  \
-    if (!(cond)) ABLMG_FAIL("internal error: " #cond " " << msg);                       \
+#define ABLMG_ASSERT(cond, msg)                                   \
+  do {                                                            \
+    if (!(cond)) ABLMG_FAIL("internal error: " #cond " " << msg); \
   } while (0)
 #endif

@@ -46,7 +46,7 @@ std::vector<HalfEdge> halfEdges(const Mesh2& m) {
   return h;
 }
 
-} // namespace
+}  // namespace
 
 double Mesh2::triangleArea(int t) const {
   const auto& tr = triangles[t];
@@ -109,7 +109,8 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
   }
   std::sort(bnd.begin(), bnd.end());
   for (std::size_t i = 1; i < bnd.size(); ++i)
-    if (bnd[i] == bnd[i - 1]) problem("boundary edge (" + std::to_string(bnd[i][0]) + ", " + std::to_string(bnd[i][1]) + ") is listed twice");
+    if (bnd[i] == bnd[i - 1])
+      problem("boundary edge (" + std::to_string(bnd[i][0]) + ", " + std::to_string(bnd[i][1]) + ") is listed twice");
   std::vector<char> bndUsed(bnd.size(), 0);
   const auto h = halfEdges(*this);
   for (std::size_t i = 0; i < h.size();) {
@@ -120,7 +121,8 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
     if (count == 2 && h[i].forward != h[i + 1].forward) {
       // interior edge, consistently oriented
     } else if (count == 1) {
-      const std::array<int, 2> dir = h[i].forward ? std::array<int, 2>{h[i].lo, h[i].hi} : std::array<int, 2>{h[i].hi, h[i].lo};
+      const std::array<int, 2> dir =
+          h[i].forward ? std::array<int, 2>{h[i].lo, h[i].hi} : std::array<int, 2>{h[i].hi, h[i].lo};
       const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
       if (it == bnd.end() || *it != dir) {
         ++r.openEdges;
@@ -130,7 +132,8 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
       }
     } else {
       ++r.nonManifoldEdges;
-      problem(name() + " lies in " + std::to_string(count) + " triangles" + (count == 2 ? " with the same orientation" : ""));
+      problem(name() + " lies in " + std::to_string(count) + " triangles" +
+              (count == 2 ? " with the same orientation" : ""));
     }
     i = j;
   }
@@ -209,4 +212,4 @@ Mesh2::VertexTriangles Mesh2::vertexTriangles() const {
   return vt;
 }
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -26,15 +26,15 @@ struct MeshValidation {
   bool ok = true;
   std::string firstProblem;  ///< empty when ok; else names the triangle/edge/vertex and why
   long invertedTriangles = 0, nonManifoldEdges = 0, openEdges = 0, unusedVertices = 0;
-  double area = 0;           ///< sum of triangle areas
+  double area = 0;  ///< sum of triangle areas
 };
 
 class Mesh2 {
-public:
+ public:
   std::vector<Vec2> vertices;
-  std::vector<int> vertexRefs;                 ///< optional, one per vertex (0 if empty)
-  std::vector<std::array<int, 3>> triangles;   ///< counter-clockwise
-  std::vector<int> triangleRefs;               ///< optional, one per triangle (0 if empty)
+  std::vector<int> vertexRefs;                ///< optional, one per vertex (0 if empty)
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise
+  std::vector<int> triangleRefs;              ///< optional, one per triangle (0 if empty)
   std::vector<BoundaryEdge> boundaryEdges;
 
   int numVertices() const { return int(vertices.size()); }
@@ -61,4 +61,4 @@ public:
   VertexTriangles vertexTriangles() const;
 };
 
-} // namespace ablmg
+}  // namespace ablmg

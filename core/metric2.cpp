@@ -33,14 +33,15 @@ Metric2 fromEig(double l1, double l2, double angle) {
   return Metric2::raw(l1 * cs * cs + l2 * sn * sn, (l1 - l2) * cs * sn, l1 * sn * sn + l2 * cs * cs);
 }
 
-} // namespace
+}  // namespace
 
 Metric2 Metric2::fromSizes(double h1, double h2, double theta, const std::string& what) {
   ABLMG_REQUIRE(std::isfinite(h1) && std::isfinite(h2) && std::isfinite(theta),
                 what << ": non-finite size or angle (h1=" << h1 << ", h2=" << h2 << ", theta=" << theta << ")");
   ABLMG_REQUIRE(h1 > 0 && h2 > 0, what << ": sizes must be positive (h1=" << h1 << ", h2=" << h2 << ")");
   const Metric2 m = fromEig(1.0 / (h1 * h1), 1.0 / (h2 * h2), theta);
-  ABLMG_REQUIRE(m.isSpd(), what << ": sizes (h1=" << h1 << ", h2=" << h2 << ") give a tensor that is not numerically SPD");
+  ABLMG_REQUIRE(m.isSpd(),
+                what << ": sizes (h1=" << h1 << ", h2=" << h2 << ") give a tensor that is not numerically SPD");
   return m;
 }
 
@@ -70,9 +71,7 @@ MetricEigen Metric2::eigen() const {
 
 double Metric2::length(const Vec2& v) const { return std::sqrt(std::max(0.0, squaredLength(v))); }
 
-double Metric2::ellipseRadius(const Vec2& dir) const {
-  return std::sqrt(dir.squaredNorm() / squaredLength(dir));
-}
+double Metric2::ellipseRadius(const Vec2& dir) const { return std::sqrt(dir.squaredNorm() / squaredLength(dir)); }
 
 Metric2 Metric2::logm() const {
   const SymEig e = symEig(a_, b_, c_);
@@ -120,7 +119,7 @@ Metric2 intersect(const Metric2& x, const Metric2& y) {
   const Eigen::Matrix2d X{{x.m11(), x.m12()}, {x.m12(), x.m22()}};
   const Eigen::Matrix2d Y{{y.m11(), y.m12()}, {y.m12(), y.m22()}};
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> ges(Y, X);  // Y p = μ X p
-  const Eigen::Matrix2d P = ges.eigenvectors();                          // Pᵀ X P = I
+  const Eigen::Matrix2d P = ges.eigenvectors();                         // Pᵀ X P = I
   Eigen::Matrix2d D = Eigen::Matrix2d::Zero();
   for (int k = 0; k < 2; ++k) D(k, k) = std::max(1.0, ges.eigenvalues()(k));  // Pᵀ Y P = diag(μ)
   const Eigen::Matrix2d Pinv = P.inverse();
@@ -137,4 +136,4 @@ double edgeLength(const Vec2& a, const Metric2& ma, const Vec2& b, const Metric2
   return la * lb * std::log(r) / (la - lb);
 }
 
-} // namespace ablmg
+}  // namespace ablmg

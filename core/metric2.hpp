@@ -23,7 +23,7 @@ struct MetricEigen {
 };
 
 class Metric2 {
-public:
+ public:
   /// The identity (h1 = h2 = 1).
   Metric2() = default;
   /// From sizes and angle (eq. 2); h1, h2 > 0 and finite. `what` prefixes error messages.
@@ -64,9 +64,15 @@ public:
 
   bool isSpd() const;
   /// Construct without checks (internal use: results of operations proven SPD).
-  static Metric2 raw(double m11, double m12, double m22) { Metric2 m; m.a_ = m11; m.b_ = m12; m.c_ = m22; return m; }
+  static Metric2 raw(double m11, double m12, double m22) {
+    Metric2 m;
+    m.a_ = m11;
+    m.b_ = m12;
+    m.c_ = m22;
+    return m;
+  }
 
-private:
+ private:
   double a_ = 1.0, b_ = 0.0, c_ = 1.0;
 };
 
@@ -86,4 +92,4 @@ Metric2 intersect(const Metric2& x, const Metric2& y);
 /// this equals eq. (3) exactly.
 double edgeLength(const Vec2& a, const Metric2& ma, const Vec2& b, const Metric2& mb);
 
-} // namespace ablmg
+}  // namespace ablmg

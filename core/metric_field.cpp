@@ -38,8 +38,8 @@ struct AnalyticMetricField::Impl {
   Metric2 evalAt(const Vec2& p) const;
 };
 
-AnalyticMetricField::AnalyticMetricField(Form form, const std::string& e1, const std::string& e2,
-                                         const std::string& e3, const std::string& source)
+AnalyticMetricField::AnalyticMetricField(Form form, const std::string& e1, const std::string& e2, const std::string& e3,
+                                         const std::string& source)
     : impl_(std::make_unique<Impl>()) {
   impl_->form = form;
   impl_->source = source;
@@ -91,7 +91,8 @@ Metric2 AnalyticMetricField::Impl::evalAt(const Vec2& p) const {
   }
   // The location is formatted only on failure: building it per call was ~5 % of a meshing run.
   try {
-    return form == Form::Sizes ? Metric2::fromSizes(v[0], v[1], v[2], source) : Metric2::fromTensor(v[0], v[1], v[2], source);
+    return form == Form::Sizes ? Metric2::fromSizes(v[0], v[1], v[2], source)
+                               : Metric2::fromTensor(v[0], v[1], v[2], source);
   } catch (const InputError&) {
     std::ostringstream where;
     where << source << " at (" << p.x() << ", " << p.y() << ")";
@@ -106,8 +107,9 @@ bool AnalyticMetricField::isConstant() const { return impl_->constant; }
 
 BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check)
     : mesh_(std::move(mesh)), metrics_(std::move(metrics)) {
-  ABLMG_REQUIRE(int(metrics_.size()) == mesh_.numVertices(),
-                "background metric: " << metrics_.size() << " tensors for a mesh of " << mesh_.numVertices() << " vertices");
+  ABLMG_REQUIRE(
+      int(metrics_.size()) == mesh_.numVertices(),
+      "background metric: " << metrics_.size() << " tensors for a mesh of " << mesh_.numVertices() << " vertices");
   if (check == MeshCheck::Validate) {
     const MeshValidation v = mesh_.validate();
     ABLMG_REQUIRE(v.ok, "background metric: the background mesh is not valid: " << v.firstProblem);
@@ -171,4 +173,4 @@ void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Met
   }
 }
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -25,7 +25,7 @@
 namespace ablmg {
 
 class MetricField {
-public:
+ public:
   virtual ~MetricField() = default;
   /// M at point p.
   virtual Metric2 at(const Vec2& p) const = 0;
@@ -44,17 +44,17 @@ public:
 };
 
 class ConstantMetricField final : public MetricField {
-public:
+ public:
   explicit ConstantMetricField(const Metric2& m) : m_(m) {}
   Metric2 at(const Vec2&) const override { return m_; }
   bool isConstant() const override { return true; }
 
-private:
+ private:
   Metric2 m_;
 };
 
 class AnalyticMetricField final : public MetricField {
-public:
+ public:
   enum class Form { Sizes, Tensor };  ///< (h1, h2, theta) or (m11, m12, m22)
   /// Throws InputError naming `source` (e.g. "config.json: metric.h1") on a bad expression.
   AnalyticMetricField(Form form, const std::string& e1, const std::string& e2, const std::string& e3,
@@ -64,13 +64,13 @@ public:
   /// True when no expression uses x or y (then M is evaluated once, at construction).
   bool isConstant() const override;
 
-private:
+ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
 class BackgroundMetricField final : public MetricField {
-public:
+ public:
   /// Whether the constructor runs Mesh2::validate() on the mesh (the default), or the caller
   /// has just done so on this very mesh and it passed (the remesh command validates its input
   /// as it reads it: the check is not repeated).
@@ -89,7 +89,7 @@ public:
   const Mesh2& mesh() const { return mesh_; }
   const std::vector<Metric2>& metrics() const { return metrics_; }
 
-private:
+ private:
   Metric2 interpolate(const PointLocator::Location& loc) const;
   Mesh2 mesh_;
   std::vector<Metric2> metrics_;
@@ -97,4 +97,4 @@ private:
   std::unique_ptr<PointLocator> locator_;
 };
 
-} // namespace ablmg
+}  // namespace ablmg

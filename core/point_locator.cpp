@@ -26,7 +26,8 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
   {
     std::vector<int> fill(rowStart.begin(), rowStart.end() - 1);
     for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) out[std::size_t(fill[std::size_t(mesh.triangles[t][k])]++)] = {mesh.triangles[t][(k + 1) % 3], int(t)};
+      for (int k = 0; k < 3; ++k)
+        out[std::size_t(fill[std::size_t(mesh.triangles[t][k])]++)] = {mesh.triangles[t][(k + 1) % 3], int(t)};
   }
   std::vector<std::array<int, 3>> nb(nt, {-1, -1, -1});
   for (std::size_t t = 0; t < nt; ++t)
@@ -44,11 +45,9 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
 /// floor(r) clamped to [0, n − 1], clamped as a double first: a cell ratio beyond int's range
 /// (a point far outside, a mesh of extreme aspect ratio, NaN) is undefined behaviour to
 /// convert. NaN gives 0.
-int clampedCell(double r, int n) {
-  return r >= 0 ? int(std::min(std::floor(r), double(n - 1))) : 0;
-}
+int clampedCell(double r, int n) { return r >= 0 ? int(std::min(std::floor(r), double(n - 1))) : 0; }
 
-} // namespace
+}  // namespace
 
 PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighboursOf(mesh)) {
   Vec2 lo = mesh.vertices.at(0), hi = lo;
@@ -135,7 +134,7 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
         break;
       }
     }
-    if (exit < 0) break;                       // p is inside (or on) triangle t
+    if (exit < 0) break;  // p is inside (or on) triangle t
     if (neighbours_[t][exit] < 0) {
       // Beyond a boundary edge. From a far hint the straight walk may have left a non-convex
       // mesh (a re-entrant corner, a hole) although p is inside: walk again from the grid's
@@ -167,4 +166,4 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
   return loc;
 }
 
-} // namespace ablmg
+}  // namespace ablmg

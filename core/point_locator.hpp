@@ -17,7 +17,7 @@
 namespace ablmg {
 
 class PointLocator {
-public:
+ public:
   explicit PointLocator(const Mesh2& mesh);
 
   struct Location {
@@ -27,7 +27,7 @@ public:
   };
   Location locate(const Vec2& p, int hint = -1) const;
 
-private:
+ private:
   int startTriangle(const Vec2& p) const;
   const Mesh2& mesh_;
   std::vector<std::array<int, 3>> neighbours_;
@@ -36,4 +36,4 @@ private:
   std::vector<int> cellTriangle_;
 };
 
-} // namespace ablmg
+}  // namespace ablmg

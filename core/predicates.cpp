@@ -54,11 +54,11 @@ int sign(double x) { return (x > 0) - (x < 0); }
 
 bool onSegment(const Vec2& p, const Vec2& q, const Vec2& r) {
   // r collinear with pq: is it within the bounding box of pq?
-  return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) &&
-         std::min(p.y(), q.y()) <= r.y() && r.y() <= std::max(p.y(), q.y());
+  return std::min(p.x(), q.x()) <= r.x() && r.x() <= std::max(p.x(), q.x()) && std::min(p.y(), q.y()) <= r.y() &&
+         r.y() <= std::max(p.y(), q.y());
 }
 
-} // namespace
+}  // namespace
 
 int orient2d(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double detLeft = (a.x() - c.x()) * (b.y() - c.y());
@@ -108,4 +108,4 @@ bool segmentsIntersect(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& 
   return false;
 }
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -27,4 +27,4 @@ bool segmentsCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s);
 /// True iff the closed segments pq and rs have any point in common (endpoints included).
 bool segmentsIntersect(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s);
 
-} // namespace ablmg
+}  // namespace ablmg

@@ -43,8 +43,8 @@ using namespace ablmg;
 namespace {
 
 struct Options {
-  double h = 0.3;                     ///< the h of eq. (4)
-  std::string out = "ex01_square";    ///< output prefix
+  double h = 0.3;                   ///< the h of eq. (4)
+  std::string out = "ex01_square";  ///< output prefix
   std::uint64_t seed = 1;
 };
 
@@ -54,16 +54,20 @@ Options parse(int argc, char** argv) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value (options: --h H, --out PREFIX, --seed N)");
     const std::string value = argv[++i];
-    if (key == "--h") o.h = std::stod(value);
-    else if (key == "--out") o.out = value;
-    else if (key == "--seed") o.seed = std::stoull(value);
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (options: --h H, --out PREFIX, --seed N)");
+    if (key == "--h")
+      o.h = std::stod(value);
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--seed")
+      o.seed = std::stoull(value);
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (options: --h H, --out PREFIX, --seed N)");
   }
   ABLMG_REQUIRE(std::isfinite(o.h) && o.h > 0.01 && o.h <= 3, "--h must be in (0.01, 3], got " << o.h);
   return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) try {
   const Options opt = parse(argc, argv);
@@ -74,8 +78,8 @@ int main(int argc, char** argv) try {
   const Domain square = Domain::rectangle(-3, -3, 3, 3);
   char invH2[64];
   std::snprintf(invH2, sizeof invH2, "/%.17g^2", opt.h);
-  const AnalyticMetricField metric(AnalyticMetricField::Form::Tensor, "(1+4*x^2)" + std::string(invH2), "4*x*y" + std::string(invH2),
-                                   "(1+4*y^2)" + std::string(invH2), "eq. (4)");
+  const AnalyticMetricField metric(AnalyticMetricField::Form::Tensor, "(1+4*x^2)" + std::string(invH2),
+                                   "4*x*y" + std::string(invH2), "(1+4*y^2)" + std::string(invH2), "eq. (4)");
 
   // 2. Bubble placement and ABLMG connection. The result is valid or meshDomain throws.
   mesher::MeshOptions options;
@@ -85,8 +89,9 @@ int main(int argc, char** argv) try {
   const auto& cs = r.stats.connect;
   std::printf("Placement: %ld nodes (predicted %ld), %d steps, %.2f s\n", ps.finalNodes, ps.predictedNodes, ps.steps,
               ps.secondsInitial + ps.secondsDynamics + ps.secondsAdjacency + ps.secondsPopulation);
-  std::printf("Connection: %ld intersection tests, %ld crossings, %ld edges deleted by eq. (12), %ld repaired triangles\n",
-              cs.intersectionTests, cs.crossingsFound, cs.deletedEdges, cs.repairedTriangles);
+  std::printf(
+      "Connection: %ld intersection tests, %ld crossings, %ld edges deleted by eq. (12), %ld repaired triangles\n",
+      cs.intersectionTests, cs.crossingsFound, cs.deletedEdges, cs.repairedTriangles);
 
   // 3. Quality in the metric the mesh was built for.
   const mesher::MeshQuality q = mesher::meshQuality(r.mesh, r.metric);

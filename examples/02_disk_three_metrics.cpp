@@ -42,9 +42,9 @@ using namespace ablmg;
 namespace {
 
 struct Options {
-  std::string which = "all";       ///< constant, ring, line or all
-  double scale = 1;                ///< multiplies h1 and h2
-  std::string out = "ex02_disk";   ///< output prefix
+  std::string which = "all";      ///< constant, ring, line or all
+  double scale = 1;               ///< multiplies h1 and h2
+  std::string out = "ex02_disk";  ///< output prefix
   std::uint64_t seed = 1;
 };
 
@@ -55,15 +55,21 @@ Options parse(int argc, char** argv) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value (" << usage << ")");
     const std::string value = argv[++i];
-    if (key == "--case") o.which = value;
-    else if (key == "--scale") o.scale = std::stod(value);
-    else if (key == "--out") o.out = value;
-    else if (key == "--seed") o.seed = std::stoull(value);
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (" << usage << ")");
+    if (key == "--case")
+      o.which = value;
+    else if (key == "--scale")
+      o.scale = std::stod(value);
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--seed")
+      o.seed = std::stoull(value);
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (" << usage << ")");
   }
   ABLMG_REQUIRE(o.which == "constant" || o.which == "ring" || o.which == "line" || o.which == "all",
                 "--case must be constant, ring, line or all, got '" << o.which << "'");
-  ABLMG_REQUIRE(std::isfinite(o.scale) && o.scale >= 0.2 && o.scale <= 20, "--scale must be in [0.2, 20], got " << o.scale);
+  ABLMG_REQUIRE(std::isfinite(o.scale) && o.scale >= 0.2 && o.scale <= 20,
+                "--scale must be in [0.2, 20], got " << o.scale);
   return o;
 }
 
@@ -73,7 +79,7 @@ struct Case {
   double paperMeanQuality;
 };
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) try {
   const Options opt = parse(argc, argv);
@@ -92,8 +98,8 @@ int main(int argc, char** argv) try {
     if (opt.which != "all" && opt.which != c.name) continue;
     // 2. The metric (sizes form, eq. 2), scaled.
     const std::string s = std::to_string(opt.scale) + "*";
-    const AnalyticMetricField metric(AnalyticMetricField::Form::Sizes, s + "(" + c.h1 + ")", s + "(" + c.h2 + ")", c.theta,
-                                     std::string("case ") + c.name);
+    const AnalyticMetricField metric(AnalyticMetricField::Form::Sizes, s + "(" + c.h1 + ")", s + "(" + c.h2 + ")",
+                                     c.theta, std::string("case ") + c.name);
     // 3. Mesh.
     mesher::MeshOptions options;
     options.placement.seed = opt.seed;
@@ -103,10 +109,11 @@ int main(int argc, char** argv) try {
     const auto& ps = r.stats.placement;
     const double seconds = ps.secondsInitial + ps.secondsDynamics + ps.secondsAdjacency + ps.secondsPopulation +
                            r.stats.connect.secondsLocalMeshes + r.stats.connect.secondsRepair;
-    std::printf("Case %-8s N = %5ld  E = %5ld  q mean %.3f (paper %.4f) min %.3f max %.3f  "
-                "l in [1/sqrt2, sqrt2] %.1f %%  |l-1| <= 0.1 %.1f %%  valid %s  %d steps %.1f s\n",
-                c.name, q.vertices, q.triangles, q.elements.mean, c.paperMeanQuality, q.elements.min, q.elements.max,
-                100 * q.edgeLengths.inSqrt2, 100 * q.edgeLengths.within10, q.valid ? "yes" : "no", ps.steps, seconds);
+    std::printf(
+        "Case %-8s N = %5ld  E = %5ld  q mean %.3f (paper %.4f) min %.3f max %.3f  "
+        "l in [1/sqrt2, sqrt2] %.1f %%  |l-1| <= 0.1 %.1f %%  valid %s  %d steps %.1f s\n",
+        c.name, q.vertices, q.triangles, q.elements.mean, c.paperMeanQuality, q.elements.min, q.elements.max,
+        100 * q.edgeLengths.inSqrt2, 100 * q.edgeLengths.within10, q.valid ? "yes" : "no", ps.steps, seconds);
     allValid = allValid && q.valid;
     // 5. Pictures and the .vtu (metric as point data: m11 m12 m22, h1, h2, angle).
     const std::string prefix = opt.out + "_" + c.name;

@@ -46,7 +46,7 @@ constexpr double kHoleRadius = 0.35;
 
 /// The boundary-layer metric of the description: h_t along the circle, h_n across it.
 class HoleLayerMetric final : public MetricField {
-public:
+ public:
   explicit HoleLayerMetric(double scale) : s_(scale) {}
   Metric2 at(const Vec2& p) const override {
     const double r = p.norm();
@@ -58,7 +58,7 @@ public:
     return Metric2::fromSizes(ht, hn, tangent);
   }
 
-private:
+ private:
   double s_;
 };
 
@@ -74,16 +74,21 @@ Options parse(int argc, char** argv) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value (options: --scale S, --out PREFIX, --seed N)");
     const std::string value = argv[++i];
-    if (key == "--scale") o.scale = std::stod(value);
-    else if (key == "--out") o.out = value;
-    else if (key == "--seed") o.seed = std::stoull(value);
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (options: --scale S, --out PREFIX, --seed N)");
+    if (key == "--scale")
+      o.scale = std::stod(value);
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--seed")
+      o.seed = std::stoull(value);
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (options: --scale S, --out PREFIX, --seed N)");
   }
-  ABLMG_REQUIRE(std::isfinite(o.scale) && o.scale >= 0.1 && o.scale <= 4, "--scale must be in [0.1, 4], got " << o.scale);
+  ABLMG_REQUIRE(std::isfinite(o.scale) && o.scale >= 0.1 && o.scale <= 4,
+                "--scale must be in [0.1, 4], got " << o.scale);
   return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) try {
   const Options opt = parse(argc, argv);

@@ -58,16 +58,20 @@ Options parse(int argc, char** argv) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value (options: --h H, --out PREFIX, --seed N)");
     const std::string value = argv[++i];
-    if (key == "--h") o.h = std::stod(value);
-    else if (key == "--out") o.out = value;
-    else if (key == "--seed") o.seed = std::stoull(value);
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (options: --h H, --out PREFIX, --seed N)");
+    if (key == "--h")
+      o.h = std::stod(value);
+    else if (key == "--out")
+      o.out = value;
+    else if (key == "--seed")
+      o.seed = std::stoull(value);
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (options: --h H, --out PREFIX, --seed N)");
   }
   ABLMG_REQUIRE(std::isfinite(o.h) && o.h >= 0.005 && o.h <= 1, "--h must be in [0.005, 1], got " << o.h);
   return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) try {
   const Options opt = parse(argc, argv);

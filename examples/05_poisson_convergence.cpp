@@ -53,9 +53,9 @@ double fittedSlope(const std::vector<double>& h, const std::vector<double>& e) {
 struct Options {
   std::string problem = "smooth";
   std::map<std::string, double> params;
-  int levels = 5;         ///< number of meshes
-  int n0 = 8;             ///< cells per unit length on the coarsest mesh
-  double perturb = 0.2;   ///< interior vertex jitter, fraction of h (≤ 0.2)
+  int levels = 5;        ///< number of meshes
+  int n0 = 8;            ///< cells per unit length on the coarsest mesh
+  double perturb = 0.2;  ///< interior vertex jitter, fraction of h (≤ 0.2)
   std::uint64_t seed = 1;
 };
 
@@ -67,25 +67,31 @@ Options parse(int argc, char** argv) {
       ABLMG_REQUIRE(i + 1 < argc, "option " << a << " needs a value");
       return argv[++i];
     };
-    if (a == "--problem") o.problem = next();
-    else if (a == "--levels") o.levels = std::stoi(next());
-    else if (a == "--n0") o.n0 = std::stoi(next());
-    else if (a == "--perturb") o.perturb = std::stod(next());
-    else if (a == "--seed") o.seed = std::stoull(next());
+    if (a == "--problem")
+      o.problem = next();
+    else if (a == "--levels")
+      o.levels = std::stoi(next());
+    else if (a == "--n0")
+      o.n0 = std::stoi(next());
+    else if (a == "--perturb")
+      o.perturb = std::stod(next());
+    else if (a == "--seed")
+      o.seed = std::stoull(next());
     else if (a == "--param") {
       const std::string kv = next();
       const auto eq = kv.find('=');
       ABLMG_REQUIRE(eq != std::string::npos, "--param " << kv << ": expected KEY=VALUE");
       o.params[kv.substr(0, eq)] = std::stod(kv.substr(eq + 1));
     } else
-      ABLMG_REQUIRE(false, "unknown option " << a
+      ABLMG_REQUIRE(false, "unknown option "
+                               << a
                                << " (valid: --problem NAME --param KEY=VALUE --levels K --n0 N --perturb P --seed S)");
   }
   ABLMG_REQUIRE(o.levels >= 2 && o.n0 >= 2, "need --levels ≥ 2 and --n0 ≥ 2");
   return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   try {
@@ -116,8 +122,8 @@ int main(int argc, char** argv) {
       l2.push_back(err.l2);
       h1.push_back(err.h1);
       std::printf("Level %d: h=1/%-5d N=%-8d L2=%.3e H1=%.3e max=%.3e L2(I_h u)=%.3e t_asm=%.3fs t_solve=%.3fs\n",
-                  level, n, sol.stats.unknowns, err.l2, err.h1, err.maxVertex, err.l2Interp,
-                  sol.stats.assemblySeconds, sol.stats.solveSeconds);
+                  level, n, sol.stats.unknowns, err.l2, err.h1, err.maxVertex, err.l2Interp, sol.stats.assemblySeconds,
+                  sol.stats.solveSeconds);
     }
 
     // 6. Fitted convergence rates in h (optimal P1 rates for smooth u: 2 and 1).

@@ -39,10 +39,10 @@ namespace {
 struct Options {
   double alpha = 20;
   int cycles = 6;
-  double n0 = 1500;       ///< vertices of the first (uniform) mesh
-  double factor = 2;      ///< N_{k+1} = factor · N_k
-  double p = 2;           ///< Lp norm the metric is optimal for
-  double hgrad = 0;       ///< > 1: gradation
+  double n0 = 1500;   ///< vertices of the first (uniform) mesh
+  double factor = 2;  ///< N_{k+1} = factor · N_k
+  double p = 2;       ///< Lp norm the metric is optimal for
+  double hgrad = 0;   ///< > 1: gradation
 };
 
 Options parse(int argc, char** argv) {
@@ -52,13 +52,20 @@ Options parse(int argc, char** argv) {
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value");
     const std::string value = argv[++i];
     const double v = value == "inf" ? INFINITY : std::atof(value.c_str());
-    if (key == "--alpha") o.alpha = v;
-    else if (key == "--cycles") o.cycles = int(v);
-    else if (key == "--n0") o.n0 = v;
-    else if (key == "--factor") o.factor = v;
-    else if (key == "--p") o.p = v;
-    else if (key == "--hgrad") o.hgrad = v;
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (valid: --alpha --cycles --n0 --factor --p --hgrad)");
+    if (key == "--alpha")
+      o.alpha = v;
+    else if (key == "--cycles")
+      o.cycles = int(v);
+    else if (key == "--n0")
+      o.n0 = v;
+    else if (key == "--factor")
+      o.factor = v;
+    else if (key == "--p")
+      o.p = v;
+    else if (key == "--hgrad")
+      o.hgrad = v;
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (valid: --alpha --cycles --n0 --factor --p --hgrad)");
   }
   ABLMG_REQUIRE(o.cycles >= 2 && o.factor >= 1 && o.n0 >= 10, "need --cycles >= 2, --factor >= 1, --n0 >= 10");
   return o;
@@ -71,7 +78,7 @@ double reference(double n, double e1, double e2) {
   return e1 * std::pow(n / n1, slope);
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   try {
@@ -92,10 +99,11 @@ int main(int argc, char** argv) {
     // prints the cycle line and compares with the FreeFem++ reference at the same N.
     const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem, options, [&](const adapt::CycleData& c) {
       const auto& r = c.report;
-      std::printf("Cycle %d: N=%ld T=%ld L2=%.3e H1=%.3e L2interp=%.3e q=%.3f/%.3f  t: solve %.2fs recover %.2fs "
-                  "metric %.2fs mesh %.2fs\n",
-                  r.cycle, r.vertices, r.triangles, r.l2, r.h1, r.l2Interp, r.qMean, r.qMin, r.tSolve, r.tRecover,
-                  r.tMetric, r.tMesh);
+      std::printf(
+          "Cycle %d: N=%ld T=%ld L2=%.3e H1=%.3e L2interp=%.3e q=%.3f/%.3f  t: solve %.2fs recover %.2fs "
+          "metric %.2fs mesh %.2fs\n",
+          r.cycle, r.vertices, r.triangles, r.l2, r.h1, r.l2Interp, r.qMean, r.qMin, r.tSolve, r.tRecover, r.tMetric,
+          r.tMesh);
       if (o.alpha == 20)
         std::printf("         vs FreeFem++ adaptmesh at this N: L2 ratio %.2f, H1 ratio %.2f\n",
                     r.l2 / reference(double(r.vertices), 1.6e-4, 2.1e-5),

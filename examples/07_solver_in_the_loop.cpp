@@ -47,9 +47,9 @@ namespace {
 
 struct Options {
   int cycles = 6;
-  double n0 = 500;          ///< vertices of the first (uniform) mesh
-  double contrast = 100;    ///< κ outside the disk
-  double width = 0.01;      ///< width of κ's transition layer
+  double n0 = 500;        ///< vertices of the first (uniform) mesh
+  double contrast = 100;  ///< κ outside the disk
+  double width = 0.01;    ///< width of κ's transition layer
   bool pictures = true;
 };
 
@@ -59,19 +59,25 @@ Options parse(int argc, char** argv) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(i + 1 < argc, key << " needs a value");
     const double v = std::atof(argv[++i]);
-    if (key == "--cycles") o.cycles = int(v);
-    else if (key == "--n0") o.n0 = v;
-    else if (key == "--contrast") o.contrast = v;
-    else if (key == "--width") o.width = v;
-    else if (key == "--pictures") o.pictures = v != 0;
-    else ABLMG_REQUIRE(false, "unknown option " << key << " (valid: --cycles --n0 --contrast --width --pictures)");
+    if (key == "--cycles")
+      o.cycles = int(v);
+    else if (key == "--n0")
+      o.n0 = v;
+    else if (key == "--contrast")
+      o.contrast = v;
+    else if (key == "--width")
+      o.width = v;
+    else if (key == "--pictures")
+      o.pictures = v != 0;
+    else
+      ABLMG_REQUIRE(false, "unknown option " << key << " (valid: --cycles --n0 --contrast --width --pictures)");
   }
   ABLMG_REQUIRE(o.cycles >= 3 && o.n0 >= 10 && o.contrast > 0 && o.width > 0,
                 "need --cycles >= 3, --n0 >= 10, --contrast > 0, --width > 0");
   return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   try {

@@ -12,8 +12,8 @@ namespace {
 
 void requireSize(const ScalarData& d, const Mesh2& mesh, const char* what) {
   ABLMG_REQUIRE(!d.isVertexValues() || int(d.vertexValues.size()) == mesh.numVertices(),
-                what << ": " << d.vertexValues.size() << " per-vertex values given for a mesh of "
-                     << mesh.numVertices() << " vertices");
+                what << ": " << d.vertexValues.size() << " per-vertex values given for a mesh of " << mesh.numVertices()
+                     << " vertices");
 }
 
 double valueAtVertex(const ScalarData& d, const Mesh2& mesh, int v) {
@@ -53,7 +53,7 @@ void requireDirichletInEveryPiece(const Mesh2& mesh, const std::vector<char>& is
                       << ") has no Dirichlet vertex: the system is singular (pure Neumann problem)");
 }
 
-} // namespace
+}  // namespace
 
 Eigen::VectorXd LinearSystem::expand(const Eigen::VectorXd& x) const {
   Eigen::VectorXd u = dirichletValues;
@@ -80,8 +80,8 @@ std::vector<char> dirichletVertices(const Mesh2& mesh, const PoissonProblem& pro
       is[v] = 1;
       tagOf[v] = e.ref;
       values[v] = valueAtVertex(*data, mesh, v);
-      ABLMG_REQUIRE(std::isfinite(values[v]), "Dirichlet data (tag " << e.ref << ") at vertex " << v << " is "
-                                                                      << values[v]);
+      ABLMG_REQUIRE(std::isfinite(values[v]),
+                    "Dirichlet data (tag " << e.ref << ") at vertex " << v << " is " << values[v]);
     }
   }
   return is;
@@ -161,13 +161,13 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
     } else if (problem.kappa.isVertexValues()) {
       const auto& kv = problem.kappa.vertexValues;
       for (int v : tri)
-        ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]), "assemble: kappa = " << kv[v] << " at vertex " << v
-                                                                               << " (kappa must be positive)");
+        ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]),
+                      "assemble: kappa = " << kv[v] << " at vertex " << v << " (kappa must be positive)");
       kappaInt = area * (kv[tri[0]] + kv[tri[1]] + kv[tri[2]]) / 3;
     } else {
-      ABLMG_REQUIRE(problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
-                    "assemble: kappa = " << problem.kappa.constant
-                                         << " (kappa must be positive: the system would not be SPD)");
+      ABLMG_REQUIRE(
+          problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
+          "assemble: kappa = " << problem.kappa.constant << " (kappa must be positive: the system would not be SPD)");
       kappaInt = area * problem.kappa.constant;
     }
     // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge; A_kl = ∫κ ∇λ_k·∇λ_l.
@@ -266,4 +266,4 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
   return sys;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

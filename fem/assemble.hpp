@@ -25,12 +25,12 @@
 namespace ablmg::fem {
 
 struct LinearSystem {
-  Eigen::SparseMatrix<double> A;      ///< free × free, symmetric (both halves stored)
-  Eigen::VectorXd b;                  ///< free
-  std::vector<int> dofOfVertex;       ///< −1 for Dirichlet vertices
-  std::vector<int> vertexOfDof;       ///< inverse of dofOfVertex
-  std::vector<Vec2> dofPoints;        ///< position of each unknown (for geometric orderings)
-  Eigen::VectorXd dirichletValues;    ///< per vertex: g_D at Dirichlet vertices, 0 elsewhere
+  Eigen::SparseMatrix<double> A;    ///< free × free, symmetric (both halves stored)
+  Eigen::VectorXd b;                ///< free
+  std::vector<int> dofOfVertex;     ///< −1 for Dirichlet vertices
+  std::vector<int> vertexOfDof;     ///< inverse of dofOfVertex
+  std::vector<Vec2> dofPoints;      ///< position of each unknown (for geometric orderings)
+  Eigen::VectorXd dirichletValues;  ///< per vertex: g_D at Dirichlet vertices, 0 elsewhere
   int numDirichletVertices = 0;
 
   /// Full per-vertex solution from the free unknowns x (Dirichlet values filled in).
@@ -47,4 +47,4 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem);
 /// Returns per-vertex flags; `values` receives g_D (0 at non-Dirichlet vertices).
 std::vector<char> dirichletVertices(const Mesh2& mesh, const PoissonProblem& problem, Eigen::VectorXd& values);
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -18,7 +18,7 @@ Eigen::VectorXd interpolate(const Mesh2& mesh, const ScalarFn& u) {
 ErrorReport computeErrors(const Mesh2& mesh, const Eigen::VectorXd& uh, const ExactSolution& exact, int degree) {
   ABLMG_REQUIRE(bool(exact.u), "computeErrors: the exact solution u is empty");
   ABLMG_REQUIRE(uh.size() == mesh.numVertices(), "computeErrors: " << uh.size() << " solution values for a mesh of "
-                                                                    << mesh.numVertices() << " vertices");
+                                                                   << mesh.numVertices() << " vertices");
   const TriangleRule& rule = triangleRule(degree);
   const bool withGrad = bool(exact.grad);
   ErrorReport r;
@@ -32,32 +32,32 @@ ErrorReport computeErrors(const Mesh2& mesh, const Eigen::VectorXd& uh, const Ex
 #pragma omp parallel for schedule(static) reduction(+ : failed) if (exact.threadSafe && nt > 4096)
   for (int t = 0; t < nt; ++t) {
     try {
-    const auto& tri = mesh.triangles[t];
-    const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
-    const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
-    // ∇u_h = Σ_k u_k ∇λ_k, ∇λ_k = perp(opposite edge) / (2|T|)
-    double gx = 0, gy = 0;
-    for (int k = 0; k < 3; ++k) {
-      const Vec2& a = p[(k + 1) % 3];
-      const Vec2& b = p[(k + 2) % 3];
-      gx += uh[tri[k]] * (a.y() - b.y()) / (2 * area);
-      gy += uh[tri[k]] * (b.x() - a.x()) / (2 * area);
-    }
-    const Vec2 gradUh(gx, gy);
-    double e0 = 0, e1 = 0, ei = 0;
-    for (int q = 0; q < rule.size(); ++q) {
-      const auto& l = rule.points[q];
-      const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-      const double u = exact.u(x.x(), x.y());
-      const double uhq = l[0] * uh[tri[0]] + l[1] * uh[tri[1]] + l[2] * uh[tri[2]];
-      const double uiq = l[0] * ui[tri[0]] + l[1] * ui[tri[1]] + l[2] * ui[tri[2]];
-      e0 += rule.weights[q] * (u - uhq) * (u - uhq);
-      ei += rule.weights[q] * (u - uiq) * (u - uiq);
-      if (withGrad) e1 += rule.weights[q] * (exact.grad(x.x(), x.y()) - gradUh).squaredNorm();
-    }
-    r.elementL2[t] = area * e0;  // squared for now
-    interpSq[t] = area * ei;
-    if (withGrad) r.elementH1[t] = area * e1;
+      const auto& tri = mesh.triangles[t];
+      const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
+      const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+      // ∇u_h = Σ_k u_k ∇λ_k, ∇λ_k = perp(opposite edge) / (2|T|)
+      double gx = 0, gy = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Vec2& a = p[(k + 1) % 3];
+        const Vec2& b = p[(k + 2) % 3];
+        gx += uh[tri[k]] * (a.y() - b.y()) / (2 * area);
+        gy += uh[tri[k]] * (b.x() - a.x()) / (2 * area);
+      }
+      const Vec2 gradUh(gx, gy);
+      double e0 = 0, e1 = 0, ei = 0;
+      for (int q = 0; q < rule.size(); ++q) {
+        const auto& l = rule.points[q];
+        const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+        const double u = exact.u(x.x(), x.y());
+        const double uhq = l[0] * uh[tri[0]] + l[1] * uh[tri[1]] + l[2] * uh[tri[2]];
+        const double uiq = l[0] * ui[tri[0]] + l[1] * ui[tri[1]] + l[2] * ui[tri[2]];
+        e0 += rule.weights[q] * (u - uhq) * (u - uhq);
+        ei += rule.weights[q] * (u - uiq) * (u - uiq);
+        if (withGrad) e1 += rule.weights[q] * (exact.grad(x.x(), x.y()) - gradUh).squaredNorm();
+      }
+      r.elementL2[t] = area * e0;  // squared for now
+      interpSq[t] = area * ei;
+      if (withGrad) r.elementH1[t] = area * e1;
     } catch (...) {  // exceptions must not leave the parallel region
       ++failed;
     }
@@ -84,4 +84,4 @@ double interpolationErrorL2(const Mesh2& mesh, const ScalarFn& u, int degree) {
   return computeErrors(mesh, interpolate(mesh, u), ExactSolution{u, {}}, degree).l2;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -47,4 +47,4 @@ double interpolationErrorL2(const Mesh2& mesh, const ScalarFn& u, int degree = 8
 /// The nodal interpolant I_h u: u at each vertex.
 Eigen::VectorXd interpolate(const Mesh2& mesh, const ScalarFn& u);
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

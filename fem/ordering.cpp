@@ -131,7 +131,7 @@ struct Dissection {
   }
 };
 
-} // namespace
+}  // namespace
 
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
                                            int leafSize) {
@@ -139,8 +139,13 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
   ABLMG_REQUIRE(A.cols() == n && int(points.size()) == n && A.isCompressed(),
                 "geometricNestedDissection: matrix " << A.rows() << "×" << A.cols() << " (compressed: "
                                                      << A.isCompressed() << ") with " << points.size() << " points");
-  Dissection d{A, points, std::max(leafSize, 1), std::vector<int>(n, -1),
-               std::make_unique<std::atomic<int>[]>(std::size_t(n)), {}, std::vector<int>(n, -1)};
+  Dissection d{A,
+               points,
+               std::max(leafSize, 1),
+               std::vector<int>(n, -1),
+               std::make_unique<std::atomic<int>[]>(std::size_t(n)),
+               {},
+               std::vector<int>(n, -1)};
   for (int v = 0; v < n; ++v) d.setMark(v, 0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
@@ -150,4 +155,4 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
   return d.perm;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

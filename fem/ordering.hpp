@@ -27,4 +27,4 @@ namespace ablmg::fem {
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
                                            int leafSize = 500);
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -25,8 +25,8 @@ struct ScalarData {
   double constant = 0;
 
   ScalarData() = default;
-  ScalarData(double c) : constant(c) {}                              // NOLINT: implicit by design
-  ScalarData(ScalarFn f) : fn(std::move(f)) {}                       // NOLINT
+  ScalarData(double c) : constant(c) {}         // NOLINT: implicit by design
+  ScalarData(ScalarFn f) : fn(std::move(f)) {}  // NOLINT
   /// Any callable double(double, double), e.g. a lambda: `p.f = [](double x, double y) {…};`
   template <class F, std::enable_if_t<std::is_invocable_r_v<double, F, double, double> &&
                                           !std::is_convertible_v<F, double> && !std::is_same_v<F, ScalarFn>,
@@ -66,4 +66,4 @@ struct PoissonProblem {
   }
 };
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -62,7 +62,7 @@ TriangleRule makeDegree8() {  // Dunavant (1985), degree 8, 16 points
   return r;
 }
 
-} // namespace
+}  // namespace
 
 const TriangleRule& triangleRule(int degree) {
   static const TriangleRule r1 = makeDegree1(), r2 = makeDegree2(), r5 = makeDegree5(), r8 = makeDegree8();
@@ -75,11 +75,12 @@ const TriangleRule& triangleRule(int degree) {
 
 const std::vector<std::array<double, 2>>& gaussLegendre01(int n) {
   static const std::vector<std::array<double, 2>> g1{{0.5, 1.0}};
-  static const std::vector<std::array<double, 2>> g2{{0.5 - 0.5 / std::sqrt(3.0), 0.5}, {0.5 + 0.5 / std::sqrt(3.0), 0.5}};
+  static const std::vector<std::array<double, 2>> g2{{0.5 - 0.5 / std::sqrt(3.0), 0.5},
+                                                     {0.5 + 0.5 / std::sqrt(3.0), 0.5}};
   static const std::vector<std::array<double, 2>> g3{
       {0.5 - 0.5 * std::sqrt(0.6), 5.0 / 18}, {0.5, 8.0 / 18}, {0.5 + 0.5 * std::sqrt(0.6), 5.0 / 18}};
   ABLMG_REQUIRE(n >= 1 && n <= 3, "gaussLegendre01: " << n << " points requested, 1 to 3 available");
   return n == 1 ? g1 : n == 2 ? g2 : g3;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -32,4 +32,4 @@ const TriangleRule& triangleRule(int degree);
 /// edge (Neumann) integrals. Returns {abscissa t ∈ (0,1), weight} pairs; weights sum to 1.
 const std::vector<std::array<double, 2>>& gaussLegendre01(int n);
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -34,13 +34,13 @@ void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
   llt.cholmod().print = 0;  // libraries never print: CHOLMOD's warnings become our InputError
   fixBlasThreads();
   llt.compute(M);
-  ABLMG_REQUIRE(llt.info() == Eigen::Success,
-                "solve: CHOLMOD could not factorise the " << M.rows() << "×" << M.rows()
-                                                          << " stiffness matrix: it is not symmetric positive "
-                                                             "definite (check kappa > 0 and the Dirichlet boundary)");
+  ABLMG_REQUIRE(llt.info() == Eigen::Success, "solve: CHOLMOD could not factorise the "
+                                                  << M.rows() << "×" << M.rows()
+                                                  << " stiffness matrix: it is not symmetric positive "
+                                                     "definite (check kappa > 0 and the Dirichlet boundary)");
 }
 
-} // namespace
+}  // namespace
 
 Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const SolveOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -50,9 +50,9 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
   Eigen::VectorXd x;
   double orderingSeconds = 0;
   if (options.ordering == Ordering::GeometricNestedDissection) {
-    ABLMG_REQUIRE(Eigen::Index(system.dofPoints.size()) == n,
-                  "solve: geometric ordering needs dofPoints (" << system.dofPoints.size() << " for " << n
-                                                                << " unknowns)");
+    ABLMG_REQUIRE(Eigen::Index(system.dofPoints.size()) == n, "solve: geometric ordering needs dofPoints ("
+                                                                  << system.dofPoints.size() << " for " << n
+                                                                  << " unknowns)");
     const std::vector<int> order = geometricNestedDissection(system.A, system.dofPoints, options.leafSize);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P{int(n)};  // old index → new index
     for (int k = 0; k < int(n); ++k) P.indices()[order[k]] = k;
@@ -97,4 +97,4 @@ PoissonSolution solvePoisson(const Mesh2& mesh, const PoissonProblem& problem, c
   return sol;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

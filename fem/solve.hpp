@@ -43,7 +43,7 @@ struct SolveStats {
   long nonZeros = 0;           ///< stored non-zeros of A (both halves)
   double factorNonZeros = 0;   ///< non-zeros of the Cholesky factor L (CHOLMOD's lnz)
   int dirichletVertices = 0;
-  double residual = 0;         ///< ‖A x − b‖₂ / ‖b‖₂ of the computed solution (0 if b = 0)
+  double residual = 0;  ///< ‖A x − b‖₂ / ‖b‖₂ of the computed solution (0 if b = 0)
 };
 
 struct PoissonSolution {
@@ -58,4 +58,4 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats = null
 /// assemble() + solveSystem() + expand(): the P1 solution at every vertex of `mesh`.
 PoissonSolution solvePoisson(const Mesh2& mesh, const PoissonProblem& problem, const SolveOptions& options = {});
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

@@ -26,7 +26,7 @@ int tagOfEdge(const Domain& domain, const Vec2& a, const Vec2& b, double tol) {
   ABLMG_FAIL("structuredMesh: boundary edge at (" << m.x() << ", " << m.y() << ") lies on no domain segment");
 }
 
-} // namespace
+}  // namespace
 
 Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, std::uint64_t seed) {
   ABLMG_REQUIRE(nx >= 1 && ny >= 1, "structuredMesh: nx = " << nx << ", ny = " << ny << " (need ≥ 1)");
@@ -110,4 +110,4 @@ Mesh2 unitSquareMesh(int n, double perturbation, std::uint64_t seed) {
   return structuredMesh(Domain::rectangle(0, 0, 1, 1), n, n, perturbation, seed);
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

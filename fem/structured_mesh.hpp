@@ -26,4 +26,4 @@ Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation =
 /// The unit square [0,1]² with n × n cells (tags as Domain::rectangle).
 Mesh2 unitSquareMesh(int n, double perturbation = 0.0, std::uint64_t seed = 1);
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

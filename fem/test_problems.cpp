@@ -26,7 +26,7 @@ Domain lshapeDomain() {
   return Domain(loop);
 }
 
-} // namespace
+}  // namespace
 
 std::vector<std::string> problemNames() {
   return {"wavefront", "peak", "lshape", "tanhlayer", "smooth", "sine", "linear"};
@@ -55,8 +55,8 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
     if (!p.params.count(key)) {
       std::ostringstream os;
       for (const auto& [k, v] : p.params) os << (os.tellp() > 0 ? ", " : "") << k;
-      ABLMG_REQUIRE(false, "problem '" << name << "': unknown parameter '" << key << "' (valid: "
-                                       << (p.params.empty() ? std::string("none") : os.str()) << ")");
+      ABLMG_REQUIRE(false, "problem '" << name << "': unknown parameter '" << key
+                                       << "' (valid: " << (p.params.empty() ? std::string("none") : os.str()) << ")");
     }
     ABLMG_REQUIRE(std::isfinite(value), "problem '" << name << "': parameter " << key << " = " << value);
     p.params[key] = value;
@@ -148,4 +148,4 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
   return p;
 }
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

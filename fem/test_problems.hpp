@@ -48,4 +48,4 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
 /// Names accepted by makeProblem, in the table's order.
 std::vector<std::string> problemNames();
 
-} // namespace ablmg::fem
+}  // namespace ablmg::fem

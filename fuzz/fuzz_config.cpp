@@ -40,7 +40,7 @@ bool acceptable(const json& j) {
   return true;
 }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -53,14 +53,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const ablmg::Vec2& p : {lo, hi, ablmg::Vec2((lo + hi) / 2), c.domain.outer().points.front()}) {
       try {
         if (!c.metric->at(p).isSpd()) __builtin_trap();
-      } catch (const ablmg::InputError&) {
-      }
+      } catch (const ablmg::InputError&) {}
     }
     const json printed = ablmg::cli::meshOptionsToJson(c.options);
     ablmg::mesher::MeshOptions again;
     ablmg::cli::applyMeshOptions(printed, again, "fuzz.json: options");
     if (ablmg::cli::meshOptionsToJson(again) != printed) __builtin_trap();
-  } catch (const ablmg::InputError&) {
-  }
+  } catch (const ablmg::InputError&) {}
   return 0;
 }

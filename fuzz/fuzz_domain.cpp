@@ -21,7 +21,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const ablmg::Domain d(outer, holes);
     if (!(d.area() > 0)) __builtin_trap();
     (void)d.contains({0.0, 0.0});
-  } catch (const ablmg::InputError&) {
-  }
+  } catch (const ablmg::InputError&) {}
   return 0;
 }

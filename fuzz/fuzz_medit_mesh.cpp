@@ -19,7 +19,7 @@ namespace {
 void requireNamesFile(const ablmg::InputError& e) {
   if (std::string_view(e.what()).substr(0, 5) != "fuzz:") __builtin_trap();
 }
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -28,9 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const auto& t : f.triangles)
       for (int v : t)
         if (v < 0 || v >= int(f.vertices.size())) __builtin_trap();
-  } catch (const ablmg::InputError& e) {
-    requireNamesFile(e);
-  }
+  } catch (const ablmg::InputError& e) { requireNamesFile(e); }
   ablmg::Mesh2 mesh;
   try {
     mesh = ablmg::io::parseMesh(text, "fuzz");
@@ -43,12 +41,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const ablmg::Domain d = ablmg::domainFromMeshBoundary(mesh, "fuzz");
     if (!(d.area() > 0)) __builtin_trap();
-  } catch (const ablmg::InputError& e) {
-    requireNamesFile(e);
-  }
+  } catch (const ablmg::InputError& e) { requireNamesFile(e); }
   if (mesh.triangles.empty()) return 0;
   const ablmg::PointLocator locator(mesh);
-  const ablmg::Vec2 probes[] = {mesh.vertices[0], (mesh.vertices[0] + mesh.vertices.back()) / 2, {0.5, 0.5}, {1e9, -1e9}};
+  const ablmg::Vec2 probes[] = {
+      mesh.vertices[0], (mesh.vertices[0] + mesh.vertices.back()) / 2, {0.5, 0.5}, {1e9, -1e9}};
   for (const auto& p : probes) {
     const auto loc = locator.locate(p);
     if (loc.triangle < 0 || loc.triangle >= mesh.numTriangles()) __builtin_trap();

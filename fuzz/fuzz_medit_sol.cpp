@@ -21,7 +21,7 @@ void check(const std::string& text, int expected) {
     if (std::string_view(e.what()).substr(0, 5) != "fuzz:") __builtin_trap();
   }
 }
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -22,7 +22,7 @@ void evaluate(const ablmg::fem::ScalarData& d) {
     if (d.fn) sink = d.fn(x, 1 - x);
 }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const nlohmann::json config = nlohmann::json::parse(data, data + size, nullptr, /*allow_exceptions=*/false);

@@ -18,8 +18,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::string e[4];
   std::size_t k = 0;
   for (char c : s) {
-    if (c == '\n' && k < 3) ++k;
-    else e[k] += c;
+    if (c == '\n' && k < 3)
+      ++k;
+    else
+      e[k] += c;
   }
   double r[4] = {0, 0, 1, 1};
   if (k == 3) {
@@ -30,9 +32,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::unique_ptr<ablmg::mesher::ParametricSurface> surface;
   try {
     surface = ablmg::mesher::makeExpressionSurface(e[0], e[1], e[2], r[0], r[1], r[2], r[3], "fuzz");
-  } catch (const ablmg::InputError&) {
-    return 0;
-  }
+  } catch (const ablmg::InputError&) { return 0; }
   const auto [lo, hi] = surface->parameterDomain().boundingBox();
   const ablmg::Vec2 mid = (lo + hi) / 2;
   for (const double h : {1.0, 1e-3}) {
@@ -40,12 +40,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const ablmg::Vec2& uv : {lo, hi, mid, ablmg::Vec2(lo.x(), hi.y()), ablmg::Vec2(0.3 * lo + 0.7 * hi)}) {
       try {
         if (!surface->point(uv).allFinite()) __builtin_trap();
-      } catch (const ablmg::InputError&) {
-      }
+      } catch (const ablmg::InputError&) {}
       try {
         if (!field.at(uv).isSpd()) __builtin_trap();
-      } catch (const ablmg::InputError&) {
-      }
+      } catch (const ablmg::InputError&) {}
     }
   }
   return 0;

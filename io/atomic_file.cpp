@@ -47,4 +47,4 @@ void writeFileAtomically(const std::string& path, const std::function<void(std::
   });
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

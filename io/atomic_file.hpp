@@ -24,4 +24,4 @@ void writePathAtomically(const std::string& path, const std::function<void(const
 /// The temporary name used for `path` (exposed for tests).
 std::string temporaryPathFor(const std::string& path);
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

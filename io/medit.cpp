@@ -45,9 +45,9 @@ void skipSection(TextScanner& s) {
 void readHeader(TextScanner& s, int& dim, bool dimRequired) {
   ABLMG_REQUIRE(!s.atEnd(), s.name() << ":1: empty file, expected MeshVersionFormatted");
   const auto kw = lower(s.next("MeshVersionFormatted"));
-  ABLMG_REQUIRE(kw == "meshversionformatted",
-                s.where() << "expected MeshVersionFormatted, got '" << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30))
-                          << "' (not a medit ASCII file?)");
+  ABLMG_REQUIRE(kw == "meshversionformatted", s.where() << "expected MeshVersionFormatted, got '"
+                                                        << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30))
+                                                        << "' (not a medit ASCII file?)");
   s.nextInt("format version", 0, 3);
   dim = 2;
   if (!s.atEnd() && lower(s.peek()) == "dimension") {
@@ -101,14 +101,15 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
         std::array<int, 3> v{0, 0, 0};
         for (int k = 0; k < nv; ++k) {
           const long id = s.nextInt("vertex index", LONG_MIN, LONG_MAX);
-          ABLMG_REQUIRE(id >= 1 && id <= maxId, s.where() << (tri ? "triangle " : "edge ") << i + 1 << ": vertex index " << id
-                                                          << " out of range [1, " << maxId << "]");
+          ABLMG_REQUIRE(id >= 1 && id <= maxId, s.where() << (tri ? "triangle " : "edge ") << i + 1 << ": vertex index "
+                                                          << id << " out of range [1, " << maxId << "]");
           v[k] = int(id - 1);
         }
         const int ref = int(s.nextInt("reference", INT_MIN, INT_MAX));
         if (tri) {
           ABLMG_REQUIRE(v[0] != v[1] && v[1] != v[2] && v[0] != v[2],
-                        s.where() << "triangle " << i + 1 << " repeats a vertex (" << v[0] + 1 << ", " << v[1] + 1 << ", " << v[2] + 1 << ")");
+                        s.where() << "triangle " << i + 1 << " repeats a vertex (" << v[0] + 1 << ", " << v[1] + 1
+                                  << ", " << v[2] + 1 << ")");
           mesh.triangles.push_back(v);
           mesh.triangleRefs.push_back(ref);
         } else {
@@ -119,8 +120,10 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
     } else if (kw == "dimension" || kw == "meshversionformatted") {
       ABLMG_REQUIRE(false, s.where() << "repeated header keyword '" << kw << "'");
     } else {
-      ABLMG_REQUIRE(!TextScanner::isNumber(kw), s.where() << "expected a section keyword, got the number '" << kw.substr(0, 30) << "' (count mismatch?)");
-      ABLMG_REQUIRE(std::all_of(kw.begin(), kw.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
+      ABLMG_REQUIRE(!TextScanner::isNumber(kw), s.where() << "expected a section keyword, got the number '"
+                                                          << kw.substr(0, 30) << "' (count mismatch?)");
+      ABLMG_REQUIRE(std::all_of(kw.begin(), kw.end(),
+                                [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
                     s.where() << "expected a section keyword, got garbage");
       skipSection(s);  // Corners, RequiredVertices, Ridges, Normals, Quadrilaterals, ...
     }
@@ -171,7 +174,8 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
     if (kw == "end") break;
     if (kw != "solatvertices") {
       ABLMG_REQUIRE(!TextScanner::isNumber(kw) &&
-                        std::all_of(kw.begin(), kw.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
+                        std::all_of(kw.begin(), kw.end(),
+                                    [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }),
                     s.where() << "expected a section keyword (SolAtVertices)");
       skipSection(s);
       continue;
@@ -191,8 +195,9 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
     }
     ABLMG_REQUIRE(types[0] == 1 || types[0] == 3,
                   s.where() << "first solution field has type 2 (vector); a metric needs type 1 (size) or 3 (tensor)");
-    ABLMG_REQUIRE(n <= long(s.size() / (2 * std::size_t(perVertex)) + 1),
-                  name << ":" << countLine << ": solution count " << n << " is more than the file can hold (truncated?)");
+    ABLMG_REQUIRE(
+        n <= long(s.size() / (2 * std::size_t(perVertex)) + 1),
+        name << ":" << countLine << ": solution count " << n << " is more than the file can hold (truncated?)");
     std::vector<Metric2> out;
     out.reserve(n);
     std::vector<double> v(perVertex);
@@ -211,21 +216,25 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
         try {
           out.push_back(Metric2::isotropic(v[0]));
         } catch (const InputError&) {
-          ABLMG_REQUIRE(false, at() << "size of vertex " << i + 1 << " is " << v[0] << ": its tensor 1/h² is not representable");
+          ABLMG_REQUIRE(
+              false, at() << "size of vertex " << i + 1 << " is " << v[0] << ": its tensor 1/h² is not representable");
         }
       } else {
         double m11 = v[0], m12 = v[1], m22 = v[2];
         if (dim == 3) {
-          ABLMG_REQUIRE(v[2] == 0 && v[4] == 0, at() << "tensor of vertex " << i + 1 << " has m13 = " << v[2] << ", m23 = " << v[4]
+          ABLMG_REQUIRE(v[2] == 0 && v[4] == 0, at() << "tensor of vertex " << i + 1 << " has m13 = " << v[2]
+                                                     << ", m23 = " << v[4]
                                                      << ": only planar (m13 = m23 = 0) metrics are read");
           m22 = v[3];
         }
         const bool spd = m11 > 0 && m22 > 0 && m11 * m22 - m12 * m12 > 0;
-        ABLMG_REQUIRE(spd, at() << "tensor of vertex " << i + 1 << " (" << m11 << ", " << m12 << ", " << m22 << ") is not positive definite");
+        ABLMG_REQUIRE(spd, at() << "tensor of vertex " << i + 1 << " (" << m11 << ", " << m12 << ", " << m22
+                                << ") is not positive definite");
         // Metric2::fromTensor's checks without its message argument; on failure it is called
         // with the message, so the error is the same.
         const Metric2 m = Metric2::raw(m11, m12, m22);
-        out.push_back(m.isSpd() ? m : Metric2::fromTensor(m11, m12, m22, at() + "tensor of vertex " + std::to_string(i + 1)));
+        out.push_back(
+            m.isSpd() ? m : Metric2::fromTensor(m11, m12, m22, at() + "tensor of vertex " + std::to_string(i + 1)));
       }
     }
     return out;
@@ -234,7 +243,7 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
   return {};
 }
 
-} // namespace
+}  // namespace
 
 Mesh2 parseMesh(const std::string& text, const std::string& name) { return meshFromText(text, name); }
 
@@ -244,7 +253,8 @@ SurfaceMeshFile parseSurfaceMesh(const std::string& text, const std::string& nam
   SurfaceMeshFile f;
   std::vector<double> zs;
   const Mesh2 mesh = parseSections(text, name, &zs, f.dimension);
-  for (int i = 0; i < mesh.numVertices(); ++i) f.vertices.emplace_back(mesh.vertices[i].x(), mesh.vertices[i].y(), zs[i]);
+  for (int i = 0; i < mesh.numVertices(); ++i)
+    f.vertices.emplace_back(mesh.vertices[i].x(), mesh.vertices[i].y(), zs[i]);
   f.triangles = mesh.triangles;
   f.triangleRefs = mesh.triangleRefs;
   return f;
@@ -267,7 +277,7 @@ namespace {
 /// a buffer that grows in large steps. The .mesh + .sol of a 2.3·10^5-triangle remesh took
 /// 0.3 s through an ostream with setprecision(17), 0.05 s this way.
 class TextBuilder {
-public:
+ public:
   explicit TextBuilder(std::size_t expectedSize) { buf_.resize(expectedSize + 64); }
   TextBuilder& text(std::string_view s) {
     room(s.size());
@@ -275,7 +285,8 @@ public:
     n_ += s.size();
     return *this;
   }
-  template <class T> TextBuilder& num(T v) {
+  template <class T>
+  TextBuilder& num(T v) {
     room(kNumberRoom);
     n_ = std::size_t(std::to_chars(buf_.data() + n_, buf_.data() + n_ + kNumberRoom, v).ptr - buf_.data());
     return *this;
@@ -290,7 +301,7 @@ public:
     return std::move(buf_);
   }
 
-private:
+ private:
   static constexpr std::size_t kNumberRoom = 32;  ///< the longest double is 24 characters
   void room(std::size_t k) {
     if (buf_.size() - n_ < k) buf_.resize(std::max(2 * buf_.size(), n_ + k + 4096));
@@ -332,7 +343,7 @@ void writeText(const std::string& path, const std::string& text) {
   writeFileAtomically(path, [&](std::ostream& os) { os.write(text.data(), std::streamsize(text.size())); });
 }
 
-} // namespace
+}  // namespace
 
 void writeMesh(const std::string& path, const Mesh2& mesh) { writeText(path, formatMesh(mesh)); }
 
@@ -344,14 +355,22 @@ void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d
   for (const auto& v : vertices) out.num(v.x()).ch(' ').num(v.y()).ch(' ').num(v.z()).text(" 0\n");
   out.text("\nTriangles\n").num(triangles.size()).ch('\n');
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    out.num(triangles[t][0] + 1).ch(' ').num(triangles[t][1] + 1).ch(' ').num(triangles[t][2] + 1).ch(' ').num(refOr0(triangleRefs, t)).ch('\n');
+    out.num(triangles[t][0] + 1)
+        .ch(' ')
+        .num(triangles[t][1] + 1)
+        .ch(' ')
+        .num(triangles[t][2] + 1)
+        .ch(' ')
+        .num(refOr0(triangleRefs, t))
+        .ch('\n');
   out.text("\nEnd\n");
   writeText(path, out.take());
 }
 
 void writeSol(const std::string& path, std::span<const Metric2> metrics) { writeText(path, formatSol(metrics)); }
 
-void writeMeshAndSol(const std::string& meshPath, const Mesh2& mesh, const std::string& solPath, std::span<const Metric2> metrics) {
+void writeMeshAndSol(const std::string& meshPath, const Mesh2& mesh, const std::string& solPath,
+                     std::span<const Metric2> metrics) {
   // The .sol is formatted on a second thread while this one formats the .mesh (formatting is
   // most of the cost); then the files are written one after the other.
   auto sol = std::async(std::launch::async, [metrics] { return formatSol(metrics); });
@@ -381,4 +400,4 @@ void writeScalarSol(const std::string& path, std::span<const double> values) {
   writeText(path, out.take());
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

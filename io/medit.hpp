@@ -69,4 +69,4 @@ void writeMeshAndSol(const std::string& meshPath, const Mesh2& mesh, const std::
 /// Scalar .sol (type 1), one value per vertex (e.g. sizes h, or a P1 solution).
 void writeScalarSol(const std::string& path, std::span<const double> values);
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

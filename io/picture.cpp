@@ -23,7 +23,8 @@ struct View {
   double py(double y) const { return height - margin - (y - y0) * scale; }
 };
 
-View makeView(double xmin, double ymin, double xmax, double ymax, const PictureOptions& o, int extraRight, int& w, int& h) {
+View makeView(double xmin, double ymin, double xmax, double ymax, const PictureOptions& o, int extraRight, int& w,
+              int& h) {
   ABLMG_REQUIRE(std::isfinite(xmin) && std::isfinite(xmax) && std::isfinite(ymin) && std::isfinite(ymax),
                 "picture: non-finite coordinates");
   const double dx = std::max(xmax - xmin, 1e-300), dy = std::max(ymax - ymin, 1e-300);
@@ -44,14 +45,16 @@ struct Canvas {
   Canvas(int w, int h)
       : surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h), cairo_surface_destroy),
         cr(cairo_create(surface.get()), cairo_destroy) {
-    ABLMG_REQUIRE(cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS, "picture: cannot create a " << w << "×" << h << " image");
+    ABLMG_REQUIRE(cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS,
+                  "picture: cannot create a " << w << "×" << h << " image");
     cairo_set_source_rgb(cr.get(), 1, 1, 1);
     cairo_paint(cr.get());
   }
   void save(const std::string& path) {
     cairo_surface_flush(surface.get());
     writePathAtomically(path, [&](const std::string& tmp) {
-      if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS) ABLMG_FAIL(path << ": cannot write PNG");
+      if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
+        ABLMG_FAIL(path << ": cannot write PNG");
     });
   }
 };
@@ -86,16 +89,18 @@ void drawEdges(cairo_t* cr, const View& v, const Mesh2& mesh, double width, doub
   cairo_stroke(cr);
 }
 
-} // namespace
+}  // namespace
 
-void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double> triangleValues, const std::string& valueName,
-              const PictureOptions& o) {
+void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double> triangleValues,
+              const std::string& valueName, const PictureOptions& o) {
   ABLMG_REQUIRE(mesh.numVertices() > 0, path << ": empty mesh");
-  ABLMG_REQUIRE(triangleValues.empty() || triangleValues.size() == std::size_t(mesh.numTriangles()),
-                path << ": " << triangleValues.size() << " triangle values for " << mesh.numTriangles() << " triangles");
+  ABLMG_REQUIRE(
+      triangleValues.empty() || triangleValues.size() == std::size_t(mesh.numTriangles()),
+      path << ": " << triangleValues.size() << " triangle values for " << mesh.numTriangles() << " triangles");
   double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
   for (const auto& p : mesh.vertices) {
-    xmin = std::min(xmin, p.x()), xmax = std::max(xmax, p.x()), ymin = std::min(ymin, p.y()), ymax = std::max(ymax, p.y());
+    xmin = std::min(xmin, p.x()), xmax = std::max(xmax, p.x()), ymin = std::min(ymin, p.y()),
+    ymax = std::max(ymax, p.y());
   }
   const bool coloured = !triangleValues.empty();
   int w, h;
@@ -143,9 +148,10 @@ void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double
   c.save(path);
 }
 
-void drawBubbles(const std::string& path, const Domain& domain, std::span<const Vec2> centres, std::span<const Metric2> metrics,
-                 const Mesh2* mesh, const PictureOptions& o) {
-  ABLMG_REQUIRE(centres.size() == metrics.size(), path << ": " << centres.size() << " centres but " << metrics.size() << " metrics");
+void drawBubbles(const std::string& path, const Domain& domain, std::span<const Vec2> centres,
+                 std::span<const Metric2> metrics, const Mesh2* mesh, const PictureOptions& o) {
+  ABLMG_REQUIRE(centres.size() == metrics.size(),
+                path << ": " << centres.size() << " centres but " << metrics.size() << " metrics");
   auto [lo, hi] = domain.boundingBox();
   for (std::size_t i = 0; i < centres.size(); ++i) {  // bubbles crossing the boundary stay in the picture
     const double r = 0.5 * metrics[i].eigen().h1;
@@ -178,7 +184,10 @@ void drawBubbles(const std::string& path, const Domain& domain, std::span<const 
   for (const auto& loop : domain.loops()) {
     for (std::size_t k = 0; k < loop.points.size(); ++k) {
       const auto& p = loop.points[k];
-      if (k == 0) cairo_move_to(cr, v.px(p.x()), v.py(p.y())); else cairo_line_to(cr, v.px(p.x()), v.py(p.y()));
+      if (k == 0)
+        cairo_move_to(cr, v.px(p.x()), v.py(p.y()));
+      else
+        cairo_line_to(cr, v.px(p.x()), v.py(p.y()));
     }
     cairo_close_path(cr);
   }
@@ -186,11 +195,13 @@ void drawBubbles(const std::string& path, const Domain& domain, std::span<const 
   c.save(path);
 }
 
-void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, const std::vector<double>& referenceSlopes,
-                    const std::string& xLabel, const std::string& yLabel, const std::string& title, const PictureOptions& o) {
+void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves,
+                    const std::vector<double>& referenceSlopes, const std::string& xLabel, const std::string& yLabel,
+                    const std::string& title, const PictureOptions& o) {
   double lx0 = 1e300, lx1 = -1e300, ly0 = 1e300, ly1 = -1e300;
   for (const auto& c : curves) {
-    ABLMG_REQUIRE(c.x.size() == c.y.size(), path << ": curve '" << c.name << "' has " << c.x.size() << " x and " << c.y.size() << " y");
+    ABLMG_REQUIRE(c.x.size() == c.y.size(),
+                  path << ": curve '" << c.name << "' has " << c.x.size() << " x and " << c.y.size() << " y");
     for (std::size_t i = 0; i < c.x.size(); ++i)
       if (c.x[i] > 0 && c.y[i] > 0 && std::isfinite(c.x[i]) && std::isfinite(c.y[i])) {
         const double a = std::log10(c.x[i]), b = std::log10(c.y[i]);
@@ -198,7 +209,8 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
       }
   }
   ABLMG_REQUIRE(lx0 <= lx1, path << ": no positive data points to plot");
-  lx0 = std::floor(lx0), lx1 = std::max(std::ceil(lx1), lx0 + 1), ly0 = std::floor(ly0), ly1 = std::max(std::ceil(ly1), ly0 + 1);
+  lx0 = std::floor(lx0), lx1 = std::max(std::ceil(lx1), lx0 + 1), ly0 = std::floor(ly0),
+  ly1 = std::max(std::ceil(ly1), ly0 + 1);
   const int W = o.width, H = int(o.width * 0.75), L = 80, R = 30, T = 40, B = 60;
   Canvas c(W, H);
   cairo_t* cr = c.cr.get();
@@ -225,7 +237,7 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
   text(cr, 10, T - 12, yLabel, 15);
   text(cr, W / 2.0 - 6.0 * title.size() / 2, 22, title, 16);
   static const double palette[][3] = {{0.12, 0.47, 0.71}, {0.84, 0.15, 0.16}, {0.17, 0.63, 0.17},
-                                      {0.58, 0.40, 0.74}, {1.0, 0.5, 0.05}, {0.55, 0.34, 0.29}};
+                                      {0.58, 0.40, 0.74}, {1.0, 0.5, 0.05},   {0.55, 0.34, 0.29}};
   cairo_save(cr);
   cairo_rectangle(cr, X(lx0), Y(ly1), X(lx1) - X(lx0), Y(ly0) - Y(ly1));
   cairo_clip(cr);
@@ -251,7 +263,10 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
     for (std::size_t i = 0; i < curves[k].x.size(); ++i) {
       if (!(curves[k].x[i] > 0 && curves[k].y[i] > 0)) continue;
       const double px = X(std::log10(curves[k].x[i])), py = Y(std::log10(curves[k].y[i]));
-      if (!started) cairo_move_to(cr, px, py), started = true; else cairo_line_to(cr, px, py);
+      if (!started)
+        cairo_move_to(cr, px, py), started = true;
+      else
+        cairo_line_to(cr, px, py);
     }
     cairo_stroke(cr);
     for (std::size_t i = 0; i < curves[k].x.size(); ++i) {
@@ -291,7 +306,9 @@ void tilePictures(const std::string& path, const std::vector<std::string>& pngPa
   }
   const double cellW = double(o.width) / columns;
   const int band = captions.empty() ? 0 : 26;
-  const auto scaleOf = [&](std::size_t i) { return std::min(1.0, cellW / cairo_image_surface_get_width(tiles[i].get())); };
+  const auto scaleOf = [&](std::size_t i) {
+    return std::min(1.0, cellW / cairo_image_surface_get_width(tiles[i].get()));
+  };
   std::vector<double> rowHeight;  // tallest scaled picture of each row, caption band included
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     if (i % columns == 0) rowHeight.push_back(0);
@@ -321,4 +338,4 @@ void tilePictures(const std::string& path, const std::vector<std::string>& pngPa
   c.save(path);
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

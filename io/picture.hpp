@@ -14,9 +14,9 @@
 namespace ablmg::io {
 
 struct PictureOptions {
-  int width = 1200;          ///< pixels; height follows the aspect ratio of the drawing
-  int margin = 30;           ///< pixels around the drawing
-  double lineWidth = 0.6;    ///< pixels, mesh edges
+  int width = 1200;        ///< pixels; height follows the aspect ratio of the drawing
+  int margin = 30;         ///< pixels around the drawing
+  double lineWidth = 0.6;  ///< pixels, mesh edges
 };
 
 /// Mesh edges (boundary edges thicker). If `triangleValues` is non-empty (one per triangle),
@@ -38,8 +38,9 @@ struct Curve {
 
 /// Log-log plot (convergence): curves with markers, a legend, and one dashed reference line
 /// per entry of `referenceSlopes` (labelled "slope s"), anchored at the first curve's first point.
-void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, const std::vector<double>& referenceSlopes = {},
-                    const std::string& xLabel = "N", const std::string& yLabel = "error", const std::string& title = "",
+void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves,
+                    const std::vector<double>& referenceSlopes = {}, const std::string& xLabel = "N",
+                    const std::string& yLabel = "error", const std::string& title = "",
                     const PictureOptions& options = {});
 
 /// Several PNGs side by side on one image (e.g. two convergence plots over two meshes): the
@@ -51,4 +52,4 @@ void drawLogLogPlot(const std::string& path, const std::vector<Curve>& curves, c
 void tilePictures(const std::string& path, const std::vector<std::string>& pngPaths, int columns,
                   const std::vector<std::string>& captions = {}, const PictureOptions& options = {});
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

@@ -32,7 +32,7 @@ bool insidePolygon(const std::vector<Vec2>& p, const Vec2& q) {
   return in;
 }
 
-} // namespace
+}  // namespace
 
 Domain parsePoly(const std::string& text, const std::string& name) {
   TextScanner s(text, name);
@@ -42,7 +42,8 @@ Domain parsePoly(const std::string& text, const std::string& name) {
   s.nextInt("dimension", 2, 2);
   const long nattr = s.nextInt("number of vertex attributes", 0, 1000);
   const long nvmark = s.nextInt("number of vertex markers (0 or 1)", 0, 1);
-  ABLMG_REQUIRE(nv <= long(s.size() / 6 + 1), s.where() << "vertex count " << nv << " is more than the file can hold (truncated?)");
+  ABLMG_REQUIRE(nv <= long(s.size() / 6 + 1),
+                s.where() << "vertex count " << nv << " is more than the file can hold (truncated?)");
   std::vector<Vec2> pts;
   pts.reserve(nv);
   long base = 0;
@@ -60,7 +61,8 @@ Domain parsePoly(const std::string& text, const std::string& name) {
   }
   const long ns = s.nextInt("segment count", 0, INT_MAX - 1);
   ABLMG_REQUIRE(ns >= 3, s.where() << ns << " segments: a domain needs a closed loop of at least 3");
-  ABLMG_REQUIRE(ns <= long(s.size() / 6 + 1), s.where() << "segment count " << ns << " is more than the file can hold (truncated?)");
+  ABLMG_REQUIRE(ns <= long(s.size() / 6 + 1),
+                s.where() << "segment count " << ns << " is more than the file can hold (truncated?)");
   const long nsmark = s.nextInt("number of segment markers (0 or 1)", 0, 1);
   std::vector<Segment> segs;
   std::vector<std::vector<int>> incident(pts.size());
@@ -69,11 +71,12 @@ Domain parsePoly(const std::string& text, const std::string& name) {
     int ends[2];
     for (int k = 0; k < 2; ++k) {
       const long v = s.nextInt("segment endpoint", LONG_MIN, LONG_MAX);
-      ABLMG_REQUIRE(v >= base && v < base + nv, s.where() << "segment " << i + base << ": endpoint " << v << " out of range ["
-                                                          << base << ", " << base + nv - 1 << "]");
+      ABLMG_REQUIRE(v >= base && v < base + nv, s.where() << "segment " << i + base << ": endpoint " << v
+                                                          << " out of range [" << base << ", " << base + nv - 1 << "]");
       ends[k] = int(v - base);
     }
-    ABLMG_REQUIRE(ends[0] != ends[1], s.where() << "segment " << i + base << " joins vertex " << ends[0] + base << " to itself");
+    ABLMG_REQUIRE(ends[0] != ends[1],
+                  s.where() << "segment " << i + base << " joins vertex " << ends[0] + base << " to itself");
     int tag = nsmark ? int(s.nextInt("segment marker", INT_MIN, INT_MAX)) : 1;
     if (tag == 0) tag = 1;
     segs.push_back({ends[0], ends[1], tag, s.line()});
@@ -83,7 +86,8 @@ Domain parsePoly(const std::string& text, const std::string& name) {
   std::vector<Vec2> holePts;
   if (!s.atEnd()) {
     const long nh = s.nextInt("hole count", 0, INT_MAX - 1);
-    ABLMG_REQUIRE(nh <= long(s.size() / 4 + 1), s.where() << "hole count " << nh << " is more than the file can hold (truncated?)");
+    ABLMG_REQUIRE(nh <= long(s.size() / 4 + 1),
+                  s.where() << "hole count " << nh << " is more than the file can hold (truncated?)");
     for (long i = 0; i < nh; ++i) {
       s.nextInt("hole number", LONG_MIN, LONG_MAX);
       const double x = s.nextDouble("hole x"), y = s.nextDouble("hole y");
@@ -125,18 +129,17 @@ Domain parsePoly(const std::string& text, const std::string& name) {
   std::vector<BoundaryLoop> holes;
   for (std::size_t l = 0; l < loops.size(); ++l) {
     if (l == outer) continue;
-    const bool hasHole = std::any_of(holePts.begin(), holePts.end(), [&](const Vec2& h) { return insidePolygon(loops[l].points, h); });
+    const bool hasHole =
+        std::any_of(holePts.begin(), holePts.end(), [&](const Vec2& h) { return insidePolygon(loops[l].points, h); });
     ABLMG_REQUIRE(hasHole, name << ": inner loop through (" << loops[l].points[0].x() << ", " << loops[l].points[0].y()
                                 << ") contains no hole point (interior constraint loops are not supported)");
     holes.push_back(std::move(loops[l]));
   }
   try {
     return Domain(std::move(loops[outer]), std::move(holes));
-  } catch (const InputError& e) {
-    throw InputError(name + ": " + e.what());
-  }
+  } catch (const InputError& e) { throw InputError(name + ": " + e.what()); }
 }
 
 Domain readPoly(const std::string& path) { return parsePoly(readTextFile(path), path); }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

@@ -24,4 +24,4 @@ Domain readPoly(const std::string& path);
 /// Same, from text in memory; `name` is used in messages.
 Domain parsePoly(const std::string& text, const std::string& name);
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

@@ -14,8 +14,9 @@ void writeStl(const std::string& path, const std::vector<Eigen::Vector3d>& verti
   const long n = long(vertices.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
-      ABLMG_REQUIRE(triangles[t][k] >= 0 && triangles[t][k] < n,
-                    path << ": triangle " << t << " has vertex id " << triangles[t][k] << " out of range [0, " << n << ")");
+      ABLMG_REQUIRE(triangles[t][k] >= 0 && triangles[t][k] < n, path << ": triangle " << t << " has vertex id "
+                                                                      << triangles[t][k] << " out of range [0, " << n
+                                                                      << ")");
   writeFileAtomically(path, [&](std::ostream& os) {
     os << std::setprecision(17) << "solid " << solidName << "\n";
     for (const auto& t : triangles) {
@@ -31,4 +32,4 @@ void writeStl(const std::string& path, const std::vector<Eigen::Vector3d>& verti
   });
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

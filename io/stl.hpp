@@ -13,4 +13,4 @@ namespace ablmg::io {
 void writeStl(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
               const std::vector<std::array<int, 3>>& triangles, const std::string& solidName = "ablmg");
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

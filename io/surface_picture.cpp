@@ -22,7 +22,8 @@ void drawSurface(const std::string& path, const std::vector<Eigen::Vector3d>& ve
   ABLMG_REQUIRE(o.elevationDeg >= -90 && o.elevationDeg <= 90, path << ": elevation must be in [-90, 90]");
   const int n = int(vertices.size());
   for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int v : triangles[t]) ABLMG_REQUIRE(v >= 0 && v < n, path << ": triangle " << t << " has vertex " << v << " (of " << n << ")");
+    for (int v : triangles[t])
+      ABLMG_REQUIRE(v >= 0 && v < n, path << ": triangle " << t << " has vertex " << v << " (of " << n << ")");
   for (int v = 0; v < n; ++v) ABLMG_REQUIRE(vertices[v].allFinite(), path << ": vertex " << v << " is not finite");
 
   // 1. Camera frame: d towards the viewer, `right` horizontal, `up` = right × forward.
@@ -37,7 +38,8 @@ void drawSurface(const std::string& path, const std::vector<Eigen::Vector3d>& ve
   double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
   for (int v = 0; v < n; ++v) {
     sx[v] = vertices[v].dot(right), sy[v] = vertices[v].dot(up);
-    xmin = std::min(xmin, sx[v]), xmax = std::max(xmax, sx[v]), ymin = std::min(ymin, sy[v]), ymax = std::max(ymax, sy[v]);
+    xmin = std::min(xmin, sx[v]), xmax = std::max(xmax, sx[v]), ymin = std::min(ymin, sy[v]),
+    ymax = std::max(ymax, sy[v]);
   }
   const double dx = std::max(xmax - xmin, 1e-300), dy = std::max(ymax - ymin, 1e-300);
   const double scale = (o.width - 2 * o.margin) / dx;
@@ -58,7 +60,8 @@ void drawSurface(const std::string& path, const std::vector<Eigen::Vector3d>& ve
 
   std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
       cairo_image_surface_create(CAIRO_FORMAT_ARGB32, o.width, height), cairo_surface_destroy);
-  ABLMG_REQUIRE(cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS, path << ": cannot create a " << o.width << "x" << height << " image");
+  ABLMG_REQUIRE(cairo_surface_status(surface.get()) == CAIRO_STATUS_SUCCESS,
+                path << ": cannot create a " << o.width << "x" << height << " image");
   std::unique_ptr<cairo_t, decltype(&cairo_destroy)> context(cairo_create(surface.get()), cairo_destroy);
   cairo_t* cr = context.get();
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -92,8 +95,9 @@ void drawSurface(const std::string& path, const std::vector<Eigen::Vector3d>& ve
 
   cairo_surface_flush(surface.get());
   writePathAtomically(path, [&](const std::string& tmp) {
-    if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS) ABLMG_FAIL(path << ": cannot write PNG");
+    if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
+      ABLMG_FAIL(path << ": cannot write PNG");
   });
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

@@ -19,13 +19,13 @@
 namespace ablmg::io {
 
 struct SurfaceViewOptions {
-  int width = 1200;             ///< pixels; the height follows the projected aspect ratio
-  int margin = 30;              ///< pixels around the drawing
-  double azimuthDeg = -60;      ///< φ, degrees, rotation about +z (0: looking from +x)
-  double elevationDeg = 30;     ///< ψ, degrees above the xy plane, in [-90, 90]
-  double ambient = 0.25;        ///< share of the colour independent of the light, [0, 1]
-  bool edges = true;            ///< draw the mesh edges (thin, dark) over the shading
-  double lineWidth = 0.4;       ///< pixels, mesh edges
+  int width = 1200;          ///< pixels; the height follows the projected aspect ratio
+  int margin = 30;           ///< pixels around the drawing
+  double azimuthDeg = -60;   ///< φ, degrees, rotation about +z (0: looking from +x)
+  double elevationDeg = 30;  ///< ψ, degrees above the xy plane, in [-90, 90]
+  double ambient = 0.25;     ///< share of the colour independent of the light, [0, 1]
+  bool edges = true;         ///< draw the mesh edges (thin, dark) over the shading
+  double lineWidth = 0.4;    ///< pixels, mesh edges
 };
 
 /// Draws the triangles (indices into `vertices`) shaded with one base colour. Throws
@@ -34,4 +34,4 @@ struct SurfaceViewOptions {
 void drawSurface(const std::string& path, const std::vector<Eigen::Vector3d>& vertices,
                  const std::vector<std::array<int, 3>>& triangles, const SurfaceViewOptions& options = {});
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

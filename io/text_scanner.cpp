@@ -69,7 +69,9 @@ bool TextScanner::atEnd() {
   return pos_ >= text_.size();
 }
 
-static bool isDelimiter(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == '#'; }
+static bool isDelimiter(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == '#';
+}
 
 std::string_view TextScanner::peek() {
   skipSpace();
@@ -123,11 +125,13 @@ bool TextScanner::isNumber(std::string_view tok) {
 
 /// The end of the number std::from_chars reads at text[pos], if it is the whole token (a
 /// delimiter or the end follows) and at most maxLength characters long; nullptr otherwise.
-template <class T> static const char* wholeNumber(const std::string& text, std::size_t pos, std::size_t maxLength, T& value) {
+template <class T>
+static const char* wholeNumber(const std::string& text, std::size_t pos, std::size_t maxLength, T& value) {
   const char* first = text.data() + pos;
   const char* last = text.data() + text.size();
   const auto [ptr, ec] = std::from_chars(first, last, value);
-  if (ec != std::errc() || ptr == first || std::size_t(ptr - first) > maxLength || (ptr != last && !isDelimiter(*ptr))) return nullptr;
+  if (ec != std::errc() || ptr == first || std::size_t(ptr - first) > maxLength || (ptr != last && !isDelimiter(*ptr)))
+    return nullptr;
   return ptr;
 }
 
@@ -175,4 +179,4 @@ long TextScanner::nextInt(const char* what, long lo, long hi) {
   return v;
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

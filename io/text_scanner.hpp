@@ -12,7 +12,7 @@ namespace ablmg::io {
 std::string readTextFile(const std::string& path);
 
 class TextScanner {
-public:
+ public:
   /// `name` is what messages call the file (usually its path's file name or full path).
   TextScanner(std::string text, std::string name);
 
@@ -39,11 +39,11 @@ public:
   /// True if the token parses completely as a number (including nan/inf).
   static bool isNumber(std::string_view tok);
 
-private:
+ private:
   void skipSpace();
   std::string text_, name_;
   std::size_t pos_ = 0;
   int curLine_ = 1, lastLine_ = 1;
 };
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

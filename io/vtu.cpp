@@ -17,10 +17,11 @@ namespace ablmg::io {
 namespace {
 
 vtkNew<vtkDoubleArray> toArray(const Field& f, std::size_t entities, const char* kind, const std::string& path) {
-  ABLMG_REQUIRE(f.components >= 1, path << ": " << kind << " field '" << f.name << "' has " << f.components << " components");
+  ABLMG_REQUIRE(f.components >= 1,
+                path << ": " << kind << " field '" << f.name << "' has " << f.components << " components");
   ABLMG_REQUIRE(f.values.size() == entities * std::size_t(f.components),
-                path << ": " << kind << " field '" << f.name << "' has " << f.values.size() << " values, expected " << entities
-                     << " × " << f.components);
+                path << ": " << kind << " field '" << f.name << "' has " << f.values.size() << " values, expected "
+                     << entities << " × " << f.components);
   vtkNew<vtkDoubleArray> a;
   a->SetName(f.name.c_str());
   a->SetNumberOfComponents(f.components);
@@ -39,8 +40,9 @@ void write(const std::string& path, vtkPoints* points, const std::vector<std::ar
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     vtkIdType ids[3];
     for (int k = 0; k < 3; ++k) {
-      ABLMG_REQUIRE(triangles[t][k] >= 0 && triangles[t][k] < np, path << ": triangle " << t << " has vertex id " << triangles[t][k]
-                                                                        << " out of range [0, " << np << ")");
+      ABLMG_REQUIRE(triangles[t][k] >= 0 && triangles[t][k] < np, path << ": triangle " << t << " has vertex id "
+                                                                       << triangles[t][k] << " out of range [0, " << np
+                                                                       << ")");
       ids[k] = triangles[t][k];
     }
     grid->InsertNextCell(VTK_TRIANGLE, 3, ids);
@@ -69,9 +71,10 @@ void write(const std::string& path, vtkPoints* points, const std::vector<std::ar
   });
 }
 
-} // namespace
+}  // namespace
 
-void writeVtu(const std::string& path, const Mesh2& mesh, const std::vector<Field>& pointData, const std::vector<Field>& cellData) {
+void writeVtu(const std::string& path, const Mesh2& mesh, const std::vector<Field>& pointData,
+              const std::vector<Field>& cellData) {
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
   pts->SetNumberOfPoints(mesh.numVertices());
@@ -79,12 +82,14 @@ void writeVtu(const std::string& path, const Mesh2& mesh, const std::vector<Fiel
   write(path, pts, mesh.triangles, pointData, cellData, &mesh.vertexRefs, &mesh.triangleRefs);
 }
 
-void writeVtu(const std::string& path, const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<int, 3>>& triangles,
-              const std::vector<Field>& pointData, const std::vector<Field>& cellData) {
+void writeVtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+              const std::vector<std::array<int, 3>>& triangles, const std::vector<Field>& pointData,
+              const std::vector<Field>& cellData) {
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
   pts->SetNumberOfPoints(vtkIdType(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) pts->SetPoint(vtkIdType(i), points[i].x(), points[i].y(), points[i].z());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    pts->SetPoint(vtkIdType(i), points[i].x(), points[i].y(), points[i].z());
   write(path, pts, triangles, pointData, cellData, nullptr, nullptr);
 }
 
@@ -100,4 +105,4 @@ std::vector<Field> metricFields(std::span<const Metric2> metrics) {
   return {m, h1, h2, angle};
 }
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

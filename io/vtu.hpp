@@ -39,4 +39,4 @@ void writeVtu(const std::string& path, const std::vector<Eigen::Vector3d>& point
 /// h1 ≥ h2) and "angle" (θ of the h1 direction, radians in [0, π)).
 std::vector<Field> metricFields(std::span<const Metric2> metrics);
 
-} // namespace ablmg::io
+}  // namespace ablmg::io

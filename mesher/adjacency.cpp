@@ -21,7 +21,8 @@ constexpr int kMinParallelRows = 128;
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
 /// does not depend on the thread count). rowFn(i, out) appends row i to out.
-template <class RowFn> AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
+template <class RowFn>
+AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   AdjacencyLists a;
   a.offsets.assign(std::size_t(n) + 1, 0);
   std::vector<std::vector<int>> buf(static_cast<std::size_t>(omp_get_max_threads()));
@@ -46,7 +47,7 @@ template <class RowFn> AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   return a;
 }
 
-} // namespace
+}  // namespace
 
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
@@ -183,7 +184,8 @@ constexpr int kRowSlack = 4;
 /// Replaces the rows `rows[k]` (ascending) by row(k): in place when every new row fits in its
 /// row's capacity (the usual case once the lists have slack), else all rows are laid out again
 /// with kRowSlack spare entries each. O(changed entries) in the first case, O(N) in the second.
-template <class RowFn> void replaceRows(AdjacencyLists& lists, std::span<const int> rows, RowFn&& row) {
+template <class RowFn>
+void replaceRows(AdjacencyLists& lists, std::span<const int> rows, RowFn&& row) {
   const int n = lists.size(), nd = int(rows.size());
   bool fits = true;
   for (int k = 0; k < nd && fits; ++k) {
@@ -244,7 +246,7 @@ void growTwoHops(const AdjacencyLists& lists, std::vector<char>& flag) {
   }
 }
 
-} // namespace
+}  // namespace
 
 void refreshAdjacencyInPlace(AdjacencyLists& lists, std::span<const Vec2> x, std::span<const Metric2> m, double radius,
                              std::span<const char> moved) {
@@ -318,8 +320,8 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
     sortByRow(lose, n);
     std::vector<int> touched;  // outside rows with a change, ascending
     for (std::size_t g0 = 0, l0 = 0; g0 < gain.size() || l0 < lose.size();) {
-      const int b = l0 == lose.size() || (g0 < gain.size() && gain[g0].first < lose[l0].first) ? gain[g0].first
-                                                                                              : lose[l0].first;
+      const int b =
+          l0 == lose.size() || (g0 < gain.size() && gain[g0].first < lose[l0].first) ? gain[g0].first : lose[l0].first;
       std::size_t g1 = g0, l1 = l0;
       while (g1 < gain.size() && gain[g1].first == b) ++g1;
       while (l1 < lose.size() && lose[l1].first == b) ++l1;
@@ -445,4 +447,4 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
   return a;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

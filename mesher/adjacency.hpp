@@ -69,4 +69,4 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> positio
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
                               std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -57,4 +57,4 @@ inline double bubbleRadius(const Metric2& mi, const Vec2& d) { return 0.5 * mi.e
 /// l0 = l_ij + l_ji of eq. (8), coordinate units.
 inline double restLength(double lij, double lji) { return lij + lji; }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -48,12 +48,13 @@ double collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& pa
   }
   return *std::max_element(best.begin(), best.end());
 }
-template <class Pred> void collectIf(int n, std::vector<int>& out, Pred&& pred) {
+template <class Pred>
+void collectIf(int n, std::vector<int>& out, Pred&& pred) {
   std::vector<std::vector<int>> parts;
   collectIf(n, out, parts, pred, [](int) { return 0.0; });
 }
 
-} // namespace
+}  // namespace
 
 BubbleSystem::BubbleSystem(const DomainGeometry& geo, NodeSet nodes, std::vector<double> arcLength)
     : geo_(&geo), nodes_(std::move(nodes)), s_(std::move(arcLength)) {
@@ -148,7 +149,8 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   }
 }
 
-[[gnu::always_inline]] inline bool BubbleSystem::pairTerm(const Vec2& xi, const Metric2& mi, int j, const DynamicsParams& p, Vec2& term) const {
+[[gnu::always_inline]] inline bool BubbleSystem::pairTerm(const Vec2& xi, const Metric2& mi, int j,
+                                                          const DynamicsParams& p, Vec2& term) const {
   const Vec2 d = nodes_.positions[j] - xi;
   const double a2 = mi.squaredLength(d), b2 = metrics_[j].squaredLength(d);
   // w > 1.5 (no force) once a² + b² > 2·1.5² (averaged) or min(a², b²) > 1.5² (harmonic,
@@ -287,7 +289,8 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     const int i = list_[k];
     const Vec2 before = nodes_.positions[i];
     switch (nodes_.kinds[i]) {
-      case NodeKind::Vertex: break;
+      case NodeKind::Vertex:
+        break;
       case NodeKind::Segment: {
         const int l = nodes_.loops[i];
         const Vec2 t = geo_->tangentAt(l, s_[i]);
@@ -385,7 +388,8 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
     }
     return i < nd ? disp_[i] : 0.0;
   };
-  maxTravel_ = collectIf(n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
+  maxTravel_ = collectIf(
+      n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
   maxTravelValid_ = true;
   active_.swap(next_);
   nextList_.valid = true;
@@ -543,4 +547,4 @@ PairDistance parsePairDistance(const std::string& name) {
 
 const char* pairDistanceName(PairDistance kind) { return kind == PairDistance::Averaged ? "averaged" : "eq8"; }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -31,12 +31,13 @@
 namespace ablmg::mesher {
 
 struct DynamicsParams {
-  double k0 = 1.0, mass = 1.0, damping = 0.35, dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
-  PairDistance pairDistance = PairDistance::Harmonic;      ///< w of the pair force (bubble_force.hpp)
+  double k0 = 1.0, mass = 1.0, damping = 0.35,
+         dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
+  PairDistance pairDistance = PairDistance::Harmonic;  ///< w of the pair force (bubble_force.hpp)
 };
 
 class BubbleSystem {
-public:
+ public:
   /// `arcLength`: Euclidean arc length along its loop of every boundary node (any value for
   /// interior nodes), as from placeBoundaryNodes. The geometry must outlive the system.
   BubbleSystem(const DomainGeometry& geo, NodeSet nodes, std::vector<double> arcLength);
@@ -99,7 +100,7 @@ public:
   /// The arc length of boundary node i along its loop (wrapped to [0, L)).
   double arcLength(int i) const;
 
-private:
+ private:
   void setBounds();
   /// Segment node i and node j on the same piece of loop between two corners (j a Segment
   /// node of that piece or one of its two corners).
@@ -107,19 +108,19 @@ private:
   /// The pair force on the bubble at xi (metric mi) from bubble j, as the vector `term` with
   /// F_i −= term (eq. 6–8); false if there is none (out of range, coincident).
   bool pairTerm(const Vec2& xi, const Metric2& mi, int j, const DynamicsParams& p, Vec2& term) const;
-  bool feels(int i, int j) const;  ///< i takes the force of j (Segment nodes: own loop piece only)
+  bool feels(int i, int j) const;         ///< i takes the force of j (Segment nodes: own loop piece only)
   Vec2 finishForce(int i, Vec2 f) const;  ///< Segment nodes keep the tangential part
   Vec2 netForce(int i, const AdjacencyLists& adj, const DynamicsParams& p) const;
   /// computeForces() when most bubbles are awake: every pair term is computed once and added
   /// to both bubbles (contiguous id blocks per thread), in the same order as netForce() adds
   /// them, so the forces are bit-identical (and independent of the thread count).
   double computeForcesPairwise(const AdjacencyLists& adj, const DynamicsParams& p);
-  std::vector<char> need_;  ///< computeForcesPairwise's scratch: bubble awake this step
-  void structureChanged();  ///< after population edits: the next step clears its per-node flags in full
-  std::vector<int> list_;  ///< bubbles computed/moved this step (awake, not Vertex), ascending
-  std::vector<char> next_;     ///< updateActivity's scratch
+  std::vector<char> need_;               ///< computeForcesPairwise's scratch: bubble awake this step
+  void structureChanged();               ///< after population edits: the next step clears its per-node flags in full
+  std::vector<int> list_;                ///< bubbles computed/moved this step (awake, not Vertex), ascending
+  std::vector<char> next_;               ///< updateActivity's scratch
   std::vector<std::vector<int>> parts_;  ///< updateActivity's per-thread id lists
-  double maxTravel_ = 0;       ///< max of disp_ when maxTravelValid_
+  double maxTravel_ = 0;                 ///< max of disp_ when maxTravelValid_
   bool maxTravelValid_ = false;
   struct {
     std::vector<int> ids;  ///< awake bubbles after updateActivity (ascending), for the next computeForces
@@ -128,11 +129,12 @@ private:
   bool resetForces_ = true, resetMoved_ = true, resetActivity_ = true;
   const DomainGeometry* geo_;
   NodeSet nodes_;
-  std::vector<double> s_, sLo_, sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
+  std::vector<double> s_, sLo_,
+      sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
   std::vector<Vec2> vel_, force_;
   std::vector<double> res_, disp_;
   std::vector<double> clear_;  ///< Interior nodes: lower bound of the Euclidean distance to the boundary (0 = unknown)
-  std::vector<Vec2> refPos_;  ///< positions at the last clearMoved()
+  std::vector<Vec2> refPos_;   ///< positions at the last clearMoved()
   std::vector<char> active_, movedSinceRefresh_, kicked_;
   std::vector<int> moved_;  ///< step stamp of a bubble's last move (== stamp_: moved in this step)
   int stamp_ = 1;
@@ -143,4 +145,4 @@ private:
   bool metricsConstant_ = false;
 };
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -22,8 +22,8 @@ bool swapCriterion(const Vec2& x, const Vec2& z, const Vec2& y, const Vec2& w, c
   const Vec2 a = x - y, b = z - y, c = z - w, d = x - w;
   const double sa = std::abs(cross(a, b)), sb = std::abs(cross(c, d));
   const double value = sa * m.dot(c, d) + sb * m.dot(a, b);  // eq. (12)
-  const double scale = sa * std::sqrt(m.squaredLength(c) * m.squaredLength(d)) +
-                       sb * std::sqrt(m.squaredLength(a) * m.squaredLength(b));
+  const double scale =
+      sa * std::sqrt(m.squaredLength(c) * m.squaredLength(d)) + sb * std::sqrt(m.squaredLength(a) * m.squaredLength(b));
   if (value < -1e-12 * scale) return true;
   if (value > 1e-12 * scale) return false;
   // Four nodes on one ellipse: the diagonal with the node of smallest abscissa goes.
@@ -44,7 +44,7 @@ bool properCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
 
 /// Boundary edges in a uniform grid, to test links against them.
 class BoundaryGrid {
-public:
+ public:
   BoundaryGrid(std::span<const Vec2> pos, std::span<const BoundaryEdge> edges) : pos_(pos), edges_(edges) {
     lo_ = hi_ = pos[edges[0].a];
     for (const auto& e : edges) {
@@ -68,7 +68,10 @@ public:
       }
       for (int i = 0; i < int(edges.size()); ++i) {
         forCells(pos[edges[i].a], pos[edges[i].b], [&](std::size_t c) {
-          if (pass == 0) ++offsets_[c + 1]; else ids_[fill[c]++] = i;
+          if (pass == 0)
+            ++offsets_[c + 1];
+          else
+            ids_[fill[c]++] = i;
           return false;
         });
       }
@@ -88,7 +91,7 @@ public:
     });
   }
 
-private:
+ private:
   std::span<const Vec2> pos_;
   std::span<const BoundaryEdge> edges_;
   Vec2 lo_, hi_;
@@ -98,12 +101,14 @@ private:
 
   /// Calls f on every cell the closed segment p–q touches (it is cut into pieces no longer
   /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true.
-  template <class F> bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
+  template <class F>
+  bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
     const auto cx = [&](double x) { return std::clamp(int((x - lo_.x()) / cell_), 0, nx_ - 1); };
     const auto cy = [&](double y) { return std::clamp(int((y - lo_.y()) / cell_), 0, ny_ - 1); };
     const int pieces = 1 + int((q - p).lpNorm<Eigen::Infinity>() / cell_);
     for (int k = 0; k < pieces; ++k) {
-      const Vec2 a = p + (q - p) * (double(k) / pieces), b = k + 1 == pieces ? q : p + (q - p) * (double(k + 1) / pieces);
+      const Vec2 a = p + (q - p) * (double(k) / pieces),
+                 b = k + 1 == pieces ? q : p + (q - p) * (double(k + 1) / pieces);
       const int x0 = cx(std::min(a.x(), b.x()) - margin_), x1 = cx(std::max(a.x(), b.x()) + margin_);
       const int y0 = cy(std::min(a.y(), b.y()) - margin_), y1 = cy(std::max(a.y(), b.y()) + margin_);
       for (int y = y0; y <= y1; ++y)
@@ -113,7 +118,7 @@ private:
     return false;
   }
 
-public:
+ public:
   /// Cells a link would visit; links spanning more than kMaxLinkCells are not tested.
   int span(int i, int j) const { return 1 + int((pos_[j] - pos_[i]).lpNorm<Eigen::Infinity>() / cell_); }
   static constexpr int kMaxLinkCells = 256;
@@ -165,7 +170,10 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   // 1. Links: adjacency pairs inside the domain.
   const auto t0 = Clock::now();
   std::vector<int> prevB(n, -1), nextB(n, -1);
-  for (const auto& e : placement.boundaryEdges) { nextB[e.a] = e.b; prevB[e.b] = e.a; }
+  for (const auto& e : placement.boundaryEdges) {
+    nextB[e.a] = e.b;
+    prevB[e.b] = e.a;
+  }
   const BoundaryGrid grid(pos, placement.boundaryEdges);
   const auto inSector = [&](int b, int q) {  // direction b→q inside the domain's angle at boundary node b
     if (q == nextB[b] || q == prevB[b]) return true;
@@ -193,7 +201,10 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
         if (nextB[j] >= 0 && !inSector(j, i)) continue;
         // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
         // size) is not worth testing: dropped, its triangles come from the scaffold.
-        if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) { ++longLinks; continue; }
+        if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) {
+          ++longLinks;
+          continue;
+        }
         if (grid.crosses(i, j)) continue;
       }
       rowsOf[i].push_back(j);
@@ -216,9 +227,8 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     std::copy(rowsOf[i].begin(), rowsOf[i].end(), links.ids.begin() + links.offsets[i]);
     const int b = links.offsets[i], m = links.offsets[i + 1] - b;
     for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
-    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m, [&](int x, int y) {
-      return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]);
-    });
+    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
+              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
   }
   rowsOf = {};
   st.longLinksDropped = longLinks;
@@ -248,7 +258,10 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
           if (!properCross(pos[p], pos[z], pos[y], pos[w])) continue;
           ++crossings;
           const Metric2 mAvg = 0.25 * (met[p] + met[z] + met[y] + met[w]);
-          if (swapCriterion(pos[p], pos[z], pos[y], pos[w], mAvg)) markDead(p, z); else markDead(y, w);
+          if (swapCriterion(pos[p], pos[z], pos[y], pos[w], mAvg))
+            markDead(p, z);
+          else
+            markDead(y, w);
         }
       }
     }
@@ -256,7 +269,10 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     st.crossingsFound += crossings;
     long deleted = 0;
     for (std::size_t e = 0; e < kill.size(); ++e)
-      if (kill[e] && links.alive[e]) { links.alive[e] = 0; ++deleted; }
+      if (kill[e] && links.alive[e]) {
+        links.alive[e] = 0;
+        ++deleted;
+      }
     st.deletedEdges += deleted / 2;
     st.deletionRounds = round + 1;
     if (deleted == 0) break;
@@ -311,14 +327,17 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
   const int n = int(pos.size());
   struct Half {
     int lo, hi, a, t;  // undirected key, start vertex of the directed edge, triangle
-    bool operator<(const Half& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t; }
+    bool operator<(const Half& o) const {
+      return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t;
+    }
   };
   // Half-edges in Half order: counting sort on lo, then each vertex's few sorted on their own.
   auto halves = [&](const std::vector<std::array<int, 3>>& tris, const std::vector<char>* skip) {
     std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
     for (int t = 0; t < int(tris.size()); ++t)
       if (!skip || !(*skip)[std::size_t(t)])
-        for (int k = 0; k < 3; ++k) ++start[std::size_t(std::min(tris[std::size_t(t)][k], tris[std::size_t(t)][(k + 1) % 3])) + 1];
+        for (int k = 0; k < 3; ++k)
+          ++start[std::size_t(std::min(tris[std::size_t(t)][k], tris[std::size_t(t)][(k + 1) % 3])) + 1];
     for (int v = 0; v < n; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
     std::vector<Half> h(static_cast<std::size_t>(start[std::size_t(n)]));
     std::vector<int> fill(start.begin(), start.end() - 1);
@@ -358,9 +377,12 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
       const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;  // the first half-edge runs a→b
       if (count == 1) {
         const int e = boundaryIndex(a, b);
-        if (e >= 0) covered[std::size_t(e)] = 1;
-        else markEdge(a, b);
-      } else if (count > 2 || h[i].a == h[i + 1].a || boundaryIndex(h[i].lo, h[i].hi) >= 0 || boundaryIndex(h[i].hi, h[i].lo) >= 0) {
+        if (e >= 0)
+          covered[std::size_t(e)] = 1;
+        else
+          markEdge(a, b);
+      } else if (count > 2 || h[i].a == h[i + 1].a || boundaryIndex(h[i].lo, h[i].hi) >= 0 ||
+                 boundaryIndex(h[i].hi, h[i].lo) >= 0) {
         markEdge(h[i].lo, h[i].hi);
       }
       i = j;
@@ -395,8 +417,10 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
       if (j - i == 1) {
         const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;
         const int e = boundaryIndex(a, b);
-        if (e >= 0) covered[std::size_t(e)] = 1;
-        else holeEdges.push_back({b, a});
+        if (e >= 0)
+          covered[std::size_t(e)] = 1;
+        else
+          holeEdges.push_back({b, a});
       }
       i = j;
     }
@@ -431,7 +455,8 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
     }
     tri.classify(local);
     const auto criterion = [&](int x, int z, int y, int w) {
-      const int X = globalOf[std::size_t(x)], Z = globalOf[std::size_t(z)], Y = globalOf[std::size_t(y)], W = globalOf[std::size_t(w)];
+      const int X = globalOf[std::size_t(x)], Z = globalOf[std::size_t(z)], Y = globalOf[std::size_t(y)],
+                W = globalOf[std::size_t(w)];
       return swapCriterion(pos[X], pos[Z], pos[Y], pos[W], 0.25 * (met[X] + met[Z] + met[Y] + met[W]));
     };
     bool capHit = false;
@@ -485,18 +510,16 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
   return true;
 }
 
-} // namespace
+}  // namespace
 
 ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
   const auto& pos = placement.nodes.positions;
   const auto& met = placement.metrics;
   const int n = int(pos.size());
-  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n,
-                "connect: placement has inconsistent sizes");
+  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n, "connect: placement has inconsistent sizes");
   ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
   // Small node sets run on the calling thread (parallel_threshold.hpp); same result either way.
-  const int threads =
-      n < kMinParallelItems ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = n < kMinParallelItems ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
   ConnectResult result;
   ConnectStats& st = result.stats;
 
@@ -534,7 +557,6 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
       return result;
     }
   }
-
 
   // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
   auto t0 = Clock::now();
@@ -581,7 +603,10 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   // Output: inside triangles, nodes outside the boundary polygon dropped.
   std::vector<int> vertexOf(n, -1);
   for (int i = 0; i < n; ++i) {
-    if (!used[i]) { ++st.droppedNodes; continue; }
+    if (!used[i]) {
+      ++st.droppedNodes;
+      continue;
+    }
     vertexOf[i] = int(result.nodeOfVertex.size());
     result.nodeOfVertex.push_back(i);
     result.mesh.vertices.push_back(pos[i]);
@@ -595,9 +620,10 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     for (int& x : v) x = vertexOf[x];
     result.mesh.triangles.push_back(v);
   }
-  for (const auto& e : placement.boundaryEdges) result.mesh.boundaryEdges.push_back({vertexOf[e.a], vertexOf[e.b], e.ref});
+  for (const auto& e : placement.boundaryEdges)
+    result.mesh.boundaryEdges.push_back({vertexOf[e.a], vertexOf[e.b], e.ref});
   st.secondsRepair += since(t0);
   return result;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

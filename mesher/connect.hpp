@@ -30,26 +30,26 @@
 namespace ablmg::mesher {
 
 struct ConnectOptions {
-  int threads = 0;  ///< 0 = OpenMP default; the result does not depend on it
+  int threads = 0;          ///< 0 = OpenMP default; the result does not depend on it
   bool localRepair = true;  ///< try step 4a before the whole-domain scaffold (off: always the scaffold)
 };
 
 struct ConnectStats {
-  long links = 0;               ///< adjacency pairs kept as candidate edges (inside the domain)
-  long longLinksDropped = 0;    ///< links too long to test cheaply against the boundary (sizes near the domain's)
-  long intersectionTests = 0;   ///< segment crossing tests (paper §4.3 reports 157317)
+  long links = 0;              ///< adjacency pairs kept as candidate edges (inside the domain)
+  long longLinksDropped = 0;   ///< links too long to test cheaply against the boundary (sizes near the domain's)
+  long intersectionTests = 0;  ///< segment crossing tests (paper §4.3 reports 157317)
   long crossingsFound = 0;
-  long deletedEdges = 0;        ///< non-satellite links removed by eq. (12)
+  long deletedEdges = 0;  ///< non-satellite links removed by eq. (12)
   int deletionRounds = 0;
-  long consistentTriangles = 0; ///< triangles present in the local meshes of all three nodes
-  long repairedTriangles = 0;   ///< output triangles that are not consistent ABLMG triangles
-  long failedRecoveries = 0;    ///< consistent-triangle edges the repair could not keep (overlaps)
-  long swaps = 0;               ///< eq. (12) edge swaps done by the repair
-  bool swapCapHit = false;      ///< the swap cap (20 per edge) stopped the repair's swaps
-  bool localRepair = false;     ///< the repair was local (step 4a), not the whole-domain scaffold
-  long droppedNodes = 0;        ///< nodes outside the boundary polygon, not in the mesh
+  long consistentTriangles = 0;  ///< triangles present in the local meshes of all three nodes
+  long repairedTriangles = 0;    ///< output triangles that are not consistent ABLMG triangles
+  long failedRecoveries = 0;     ///< consistent-triangle edges the repair could not keep (overlaps)
+  long swaps = 0;                ///< eq. (12) edge swaps done by the repair
+  bool swapCapHit = false;       ///< the swap cap (20 per edge) stopped the repair's swaps
+  bool localRepair = false;      ///< the repair was local (step 4a), not the whole-domain scaffold
+  long droppedNodes = 0;         ///< nodes outside the boundary polygon, not in the mesh
   double secondsLocalMeshes = 0;
-  double secondsRepair = 0;     ///< validating the union, and the repair when it was needed
+  double secondsRepair = 0;  ///< validating the union, and the repair when it was needed
 };
 
 struct ConnectResult {
@@ -71,4 +71,4 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
 /// (|sin(α+β)| below round-off) deletes the diagonal holding the node of smallest abscissa.
 bool swapCriterion(const Vec2& x, const Vec2& z, const Vec2& y, const Vec2& w, const Metric2& mAvg);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -46,7 +46,7 @@ std::vector<CellVertex> voronoiCell(const std::vector<std::pair<Vec2, int>>& pts
   return poly;
 }
 
-} // namespace
+}  // namespace
 
 LocalTopology localTopology(std::span<const Vec2> x, std::span<const Metric2> m, std::span<const NodeKind> kinds,
                             const AdjacencyLists& adj, double minEdge) {
@@ -62,8 +62,10 @@ LocalTopology localTopology(std::span<const Vec2> x, std::span<const Metric2> m,
     std::vector<int> ring;
     bool closed = !cell.empty();
     for (std::size_t k = 0; k < cell.size() && closed; ++k) {
-      if (cell[k].label < 0) closed = false;
-      else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge) ring.push_back(cell[k].label);
+      if (cell[k].label < 0)
+        closed = false;
+      else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge)
+        ring.push_back(cell[k].label);
     }
     if (closed) rows[std::size_t(i)] = std::move(ring);
   }
@@ -120,11 +122,12 @@ long shakeNodes(BubbleSystem& sys, const DomainGeometry& geo, std::span<const ch
     const Vec2 target = sys.nodes().positions[i] + (amplitude / std::sqrt(mi.squaredLength(u))) * u;
     // The wall searches scan the bounding box of the metric ball of each threshold
     // (reachBox): the same answers as squares of the long size h1, far fewer cells for a thin ellipse.
-    if (geo.metricDistanceToBoundary(sys.nodes().positions[i], mi, reachBox(mi, 1.5)) < 1.5) continue;  // first rows stay
+    if (geo.metricDistanceToBoundary(sys.nodes().positions[i], mi, reachBox(mi, 1.5)) < 1.5)
+      continue;  // first rows stay
     if (!geo.inside(target) || geo.metricDistanceToBoundary(target, mi, reachBox(mi, 0.5)) < 0.5) continue;
     moved += sys.displace(i, target);
   }
   return moved;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -49,7 +49,7 @@ namespace ablmg::mesher {
 struct LocalTopology {
   std::vector<int> offsets{0};  ///< row i: ids[offsets[i] … offsets[i+1])
   std::vector<int> ids;
-  std::vector<int> degree;      ///< −1 where unknown
+  std::vector<int> degree;  ///< −1 where unknown
   std::span<const int> ring(int i) const { return {ids.data() + offsets[i], ids.data() + offsets[i + 1]}; }
 };
 
@@ -74,4 +74,4 @@ std::vector<char> defectNeighbourhood(const LocalTopology& topo, int rings);
 long shakeNodes(BubbleSystem& sys, const DomainGeometry& geo, std::span<const char> flagged, double amplitude,
                 int pass);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -45,7 +45,7 @@ struct StarSlot {
 /// vertex (to start star walks), boundary flags and every triangle's q, all kept up to date.
 /// Collapses leave dead vertices and triangles behind; compact() removes them at the end.
 class Improver {
-public:
+ public:
   Improver(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field, const ImproveOptions& options,
            std::vector<double> quality)
       : mesh_(mesh), metrics_(metrics), field_(field), options_(options), quality_(std::move(quality)) {
@@ -109,7 +109,7 @@ public:
     return std::move(quality_);
   }
 
-private:
+ private:
   static long edits(const ImproveStats& s) { return s.swaps + s.moves + s.collapses; }
   bool isBad(int t) const { return !deadTriangle_[std::size_t(t)] && quality_[std::size_t(t)] < options_.qThreshold; }
 
@@ -151,8 +151,9 @@ private:
   }
   double qualityOfCorners(int a, int b, int c) const {
     const auto& x = mesh_.vertices;
-    return triangleQuality(x[std::size_t(a)], x[std::size_t(b)], x[std::size_t(c)],
-                           (1.0 / 3.0) * (metrics_[std::size_t(a)] + metrics_[std::size_t(b)] + metrics_[std::size_t(c)]));
+    return triangleQuality(
+        x[std::size_t(a)], x[std::size_t(b)], x[std::size_t(c)],
+        (1.0 / 3.0) * (metrics_[std::size_t(a)] + metrics_[std::size_t(b)] + metrics_[std::size_t(c)]));
   }
   void updateQuality(int t) {
     const auto& tr = mesh_.triangles[std::size_t(t)];
@@ -170,7 +171,8 @@ private:
   }
   /// Metric length of the edge a–b (eq. 3 with the mean of the end metrics, as `ablmg stats`).
   double edgeLength(int a, int b) const {
-    return average(metrics_[std::size_t(a)], metrics_[std::size_t(b)]).length(mesh_.vertices[std::size_t(b)] - mesh_.vertices[std::size_t(a)]);
+    return average(metrics_[std::size_t(a)], metrics_[std::size_t(b)])
+        .length(mesh_.vertices[std::size_t(b)] - mesh_.vertices[std::size_t(a)]);
   }
 
   static int localIndex(const std::array<int, 3>& tr, int v) { return tr[0] == v ? 0 : tr[1] == v ? 1 : 2; }
@@ -302,7 +304,8 @@ private:
     if (!p.allFinite()) return std::nullopt;
     for (const StarSlot& s : slots_) {
       const auto side = ringSide(s);
-      if (orient2d(mesh_.vertices[std::size_t(side[0])], mesh_.vertices[std::size_t(side[1])], p) <= 0) return std::nullopt;
+      if (orient2d(mesh_.vertices[std::size_t(side[0])], mesh_.vertices[std::size_t(side[1])], p) <= 0)
+        return std::nullopt;
     }
     Metric2 mp;
     try {
@@ -318,7 +321,8 @@ private:
     for (const StarSlot& s : slots_) {
       c.q = std::min(c.q, slotQuality(s, p, mp));
       const int a = ringSide(s)[0];  // every ring vertex starts one ring side
-      c.unitEdges += std::abs(average(mp, metrics_[std::size_t(a)]).length(mesh_.vertices[std::size_t(a)] - p) - 1) <= 0.1;
+      c.unitEdges +=
+          std::abs(average(mp, metrics_[std::size_t(a)]).length(mesh_.vertices[std::size_t(a)] - p) - 1) <= 0.1;
     }
     return c;
   }
@@ -328,7 +332,8 @@ private:
   /// a probe is taken when it is admissible and ranks better(). At most 128 field evaluations.
   void compassSearch(Candidate& best) const {
     const MetricEigen e = best.m.eigen();
-    const Vec2 axis1 = e.h1 * Vec2(std::cos(e.theta), std::sin(e.theta)), axis2 = e.h2 * Vec2(-std::sin(e.theta), std::cos(e.theta));
+    const Vec2 axis1 = e.h1 * Vec2(std::cos(e.theta), std::sin(e.theta)),
+               axis2 = e.h2 * Vec2(-std::sin(e.theta), std::cos(e.theta));
     for (double step = 0.2; step > 0.02; step *= 0.5) {
       bool moved = true;
       for (int round = 0; round < 4 && moved; ++round) {
@@ -500,13 +505,21 @@ private:
     std::optional<EdgeQuad> collapsed;
     if (options_.collapseEdges)
       if (const auto e = edgeQuad(t, shortest))
-        if (const auto c = bestCollapse(*e); c && c->q > bestQ) kind = Kind::Collapse, collapsed = e, chosen = *c, bestQ = c->q;
+        if (const auto c = bestCollapse(*e); c && c->q > bestQ)
+          kind = Kind::Collapse, collapsed = e, chosen = *c, bestQ = c->q;
     if (kind != Kind::None) ++edits_;
     switch (kind) {
-      case Kind::None: break;
-      case Kind::Flip: flip(t, flipEdge), ++stats.swaps; break;
-      case Kind::Move: moveVertex(mover, chosen), ++stats.moves; break;
-      case Kind::Collapse: collapse(*collapsed, chosen), ++stats.collapses; break;
+      case Kind::None:
+        break;
+      case Kind::Flip:
+        flip(t, flipEdge), ++stats.swaps;
+        break;
+      case Kind::Move:
+        moveVertex(mover, chosen), ++stats.moves;
+        break;
+      case Kind::Collapse:
+        collapse(*collapsed, chosen), ++stats.collapses;
+        break;
     }
   }
 
@@ -531,19 +544,22 @@ private:
 
 double minOf(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::min_element(x.begin(), x.end()); }
 
-} // namespace
+}  // namespace
 
 void requireValid(const ImproveOptions& o) {
-  ABLMG_REQUIRE(o.qThreshold > 0 && o.qThreshold <= 1, "improve options: qThreshold must be in (0, 1], got " << o.qThreshold);
+  ABLMG_REQUIRE(o.qThreshold > 0 && o.qThreshold <= 1,
+                "improve options: qThreshold must be in (0, 1], got " << o.qThreshold);
   ABLMG_REQUIRE(o.maxPasses >= 0, "improve options: maxPasses must be >= 0, got " << o.maxPasses);
-  ABLMG_REQUIRE(o.swapMargin >= 0 && std::isfinite(o.swapMargin), "improve options: swapMargin must be >= 0, got " << o.swapMargin);
+  ABLMG_REQUIRE(o.swapMargin >= 0 && std::isfinite(o.swapMargin),
+                "improve options: swapMargin must be >= 0, got " << o.swapMargin);
   ABLMG_REQUIRE(o.collapseMargin >= 0 && std::isfinite(o.collapseMargin),
                 "improve options: collapseMargin must be >= 0, got " << o.collapseMargin);
-  ABLMG_REQUIRE(o.moveMargin >= 0 && std::isfinite(o.moveMargin), "improve options: moveMargin must be >= 0, got " << o.moveMargin);
+  ABLMG_REQUIRE(o.moveMargin >= 0 && std::isfinite(o.moveMargin),
+                "improve options: moveMargin must be >= 0, got " << o.moveMargin);
 }
 
-
-ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field, const ImproveOptions& options) {
+ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field,
+                            const ImproveOptions& options) {
   const auto t0 = Clock::now();
   requireValid(options);
   std::vector<double> quality = elementQualities(mesh, metrics);  // checks metrics.size()
@@ -564,4 +580,4 @@ ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const Me
   return stats;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

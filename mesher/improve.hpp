@@ -55,13 +55,13 @@
 namespace ablmg::mesher {
 
 struct ImproveOptions {
-  bool enabled = true;       ///< meshDomain runs the pass (improveQuality itself ignores it)
-  double qThreshold = 0.85;  ///< triangles with q below this are improved; in (0, 1]. 0.85 (was
-                             ///< 0.7): q min 0.70 → 0.85 on the remesh benchmark, ±10 % share kept
-  int maxPasses = 8;         ///< cap on swap + relocation passes, ≥ 0
-  double swapMargin = 1e-3;  ///< a swap must raise min q of its two triangles by more (no cycling)
-  double moveMargin = 1e-4;  ///< a move must raise min q of its star by more
-  bool collapseEdges = true; ///< (c) collapses of short interior edges (each removes a vertex)
+  bool enabled = true;           ///< meshDomain runs the pass (improveQuality itself ignores it)
+  double qThreshold = 0.85;      ///< triangles with q below this are improved; in (0, 1]. 0.85 (was
+                                 ///< 0.7): q min 0.70 → 0.85 on the remesh benchmark, ±10 % share kept
+  int maxPasses = 8;             ///< cap on swap + relocation passes, ≥ 0
+  double swapMargin = 1e-3;      ///< a swap must raise min q of its two triangles by more (no cycling)
+  double moveMargin = 1e-4;      ///< a move must raise min q of its star by more
+  bool collapseEdges = true;     ///< (c) collapses of short interior edges (each removes a vertex)
   double collapseMargin = 1e-3;  ///< a collapse must raise min q of the triangles it changes by more
 };
 
@@ -69,11 +69,11 @@ struct ImproveOptions {
 void requireValid(const ImproveOptions& options);
 
 struct ImproveStats {
-  long badBefore = 0, badAfter = 0;     ///< triangles with q < qThreshold
-  long swaps = 0, moves = 0;            ///< edge flips and vertex relocations done
-  long collapses = 0;                   ///< interior edges collapsed (each removes a vertex, two triangles)
-  int passes = 0;                       ///< passes run (≤ maxPasses)
-  double qMinBefore = 0, qMinAfter = 0; ///< smallest q over the mesh (0 for an empty mesh)
+  long badBefore = 0, badAfter = 0;      ///< triangles with q < qThreshold
+  long swaps = 0, moves = 0;             ///< edge flips and vertex relocations done
+  long collapses = 0;                    ///< interior edges collapsed (each removes a vertex, two triangles)
+  int passes = 0;                        ///< passes run (≤ maxPasses)
+  double qMinBefore = 0, qMinAfter = 0;  ///< smallest q over the mesh (0 for an empty mesh)
   double seconds = 0;
 };
 
@@ -84,4 +84,4 @@ struct ImproveStats {
 ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field,
                             const ImproveOptions& options = {});
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -58,7 +58,7 @@ Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation,
   return r * Eigen::Vector2d(e.h1, e.h2).asDiagonal() * q;
 }
 
-} // namespace
+}  // namespace
 
 DomainGeometry::DomainGeometry(const Domain& domain) {
   const auto& dl = domain.loops();
@@ -164,7 +164,8 @@ double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m,
 
 double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const {
   double best = std::numeric_limits<double>::infinity();
-  grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(), [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
+  grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(),
+                     [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
   return best;
 }
 
@@ -234,14 +235,16 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
     const double LM = sM.back();
     auto metricAt = [&](double s) {  // Euclidean arc (in [0, L]) → metric arc
-      const std::size_t i = std::clamp<std::size_t>(std::upper_bound(subS.begin(), subS.end(), s) - subS.begin(), 1, subS.size() - 1);
+      const std::size_t i =
+          std::clamp<std::size_t>(std::upper_bound(subS.begin(), subS.end(), s) - subS.begin(), 1, subS.size() - 1);
       const double t = (s - subS[i - 1]) / std::max(subS[i] - subS[i - 1], 1e-300);
       return sM[i - 1] + t * (sM[i] - sM[i - 1]);
     };
     auto euclidAt = [&](double t) {  // metric arc (wrapped) → Euclidean arc
       t = std::fmod(t, LM);
       if (t < 0) t += LM;
-      const std::size_t i = std::clamp<std::size_t>(std::upper_bound(sM.begin(), sM.end(), t) - sM.begin(), 1, sM.size() - 1);
+      const std::size_t i =
+          std::clamp<std::size_t>(std::upper_bound(sM.begin(), sM.end(), t) - sM.begin(), 1, sM.size() - 1);
       const double f = (t - sM[i - 1]) / std::max(sM[i] - sM[i - 1], 1e-300);
       return subS[i - 1] + f * (subS[i] - subS[i - 1]);
     };
@@ -281,9 +284,12 @@ LatticeOrientation parseLatticeOrientation(const std::string& name) {
 
 const char* latticeOrientationName(LatticeOrientation orientation) {
   switch (orientation) {
-  case LatticeOrientation::LongAxis: return "long";
-  case LatticeOrientation::ShortAxis: return "short";
-  default: return "axes";
+    case LatticeOrientation::LongAxis:
+      return "long";
+    case LatticeOrientation::ShortAxis:
+      return "short";
+    default:
+      return "axes";
   }
 }
 
@@ -295,8 +301,10 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   const bool constant = metric.isConstant();
   const Metric2 m0 = metric.at(0.5 * (lo + hi));
   std::vector<Metric2> ms(nodes.size());
-  if (constant) std::fill(ms.begin(), ms.end(), m0);
-  else metric.evaluate(nodes.positions, ms);
+  if (constant)
+    std::fill(ms.begin(), ms.end(), m0);
+  else
+    metric.evaluate(nodes.positions, ms);
   for (int i = 0; i < nodes.size(); ++i) grid.insert(i, nodes.positions[i]);
 
   auto metricAt = [&](const Vec2& p) { return constant ? m0 : metric.at(p); };
@@ -329,9 +337,11 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   const int g = 48;
   std::vector<Vec2> probes;
   for (int y = 0; y < g; ++y)
-    for (int x = 0; x < g; ++x) probes.push_back(lo + Vec2((x + 0.5) / g * (hi.x() - lo.x()), (y + 0.5) / g * (hi.y() - lo.y())));
+    for (int x = 0; x < g; ++x)
+      probes.push_back(lo + Vec2((x + 0.5) / g * (hi.x() - lo.x()), (y + 0.5) / g * (hi.y() - lo.y())));
   const Vec2 mid = 0.5 * (lo + hi);
-  std::stable_sort(probes.begin(), probes.end(), [&](const Vec2& a, const Vec2& b) { return (a - mid).squaredNorm() < (b - mid).squaredNorm(); });
+  std::stable_sort(probes.begin(), probes.end(),
+                   [&](const Vec2& a, const Vec2& b) { return (a - mid).squaredNorm() < (b - mid).squaredNorm(); });
 
   std::vector<Vec2> dirs;
   for (int k = 0; k < 6; ++k) dirs.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
@@ -353,8 +363,10 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   // growth from each of them into the gaps they leave.
   if (!seeds.empty()) {
     std::vector<Metric2> sm(seeds.size());
-    if (constant) std::fill(sm.begin(), sm.end(), m0);
-    else metric.evaluate(seeds, sm);
+    if (constant)
+      std::fill(sm.begin(), sm.end(), m0);
+    else
+      metric.evaluate(seeds, sm);
     for (std::size_t k = 0; k < seeds.size(); ++k)
       if (acceptable(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
     grow();
@@ -368,7 +380,7 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
 }
 
 double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricField& metric, int g) {
-  const auto box = geo.boundingBox();  // named, not a structured binding: the lambda below
+  const auto box = geo.boundingBox();          // named, not a structured binding: the lambda below
   const Vec2 lo = box.first, hi = box.second;  // captures it, which clang 14 rejects
   if (metric.isConstant()) return domain.area() * std::sqrt(metric.at(0.5 * (lo + hi)).det());
   const Vec2 d = (hi - lo) / g;
@@ -396,4 +408,4 @@ long predictedNodeCount(double metricAreaValue, long boundaryNodes, int holes) {
   return std::lround(2.0 / std::sqrt(3.0) * metricAreaValue + 0.5 * double(boundaryNodes) + 1.0 - holes);
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

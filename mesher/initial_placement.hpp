@@ -33,15 +33,15 @@
 namespace ablmg::mesher {
 
 struct LoopPolyline {
-  std::vector<Vec2> points;   ///< the loop's points (closed: segment k = points[k] → points[k+1 mod n])
-  std::vector<double> cum;    ///< cum[k] = Euclidean arc length at points[k]; cum[n] = length
-  std::vector<int> tags;      ///< one per segment
-  std::vector<int> corners;   ///< corner point indices (Domain::corners)
+  std::vector<Vec2> points;  ///< the loop's points (closed: segment k = points[k] → points[k+1 mod n])
+  std::vector<double> cum;   ///< cum[k] = Euclidean arc length at points[k]; cum[n] = length
+  std::vector<int> tags;     ///< one per segment
+  std::vector<int> corners;  ///< corner point indices (Domain::corners)
   double length = 0;
 };
 
 class DomainGeometry {
-public:
+ public:
   explicit DomainGeometry(const Domain& domain);
   const std::vector<LoopPolyline>& loops() const { return loops_; }
   std::pair<Vec2, Vec2> boundingBox() const { return {lo_, hi_}; }
@@ -65,7 +65,7 @@ public:
   /// Arc length → "point index + fraction" (NodeSet::arc convention).
   double indexArc(int l, double s) const;
 
-private:
+ private:
   /// Metric distance (eq. 3, constant m) from p to global segment `id`.
   double metricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const;
   std::vector<LoopPolyline> loops_;
@@ -104,9 +104,8 @@ struct InteriorPlacementOptions {
 /// `spacingHint` = expected typical node spacing (coordinate units), sizes the bucket grid.
 /// `seeds` (warm start, e.g. the previous mesh's vertices): taken first, in order, where they
 /// pass the same tests as lattice points; the lattice then grows from them into the gaps.
-void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
-                        double spacingHint, const InteriorPlacementOptions& options = {},
-                        std::span<const Vec2> seeds = {});
+void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, double spacingHint,
+                        const InteriorPlacementOptions& options = {}, std::span<const Vec2> seeds = {});
 
 /// ∫Ω √det M dA (the domain's area in metric space) by midpoint quadrature on a g×g grid
 /// over the bounding box (exact area × √det M for a constant field). OpenMP (inside tests,
@@ -118,4 +117,4 @@ double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricF
 /// equilateral (in the metric) triangles has T·√3/4 = A_M and, by Euler, T = 2N − Nb − 2 + 2·holes.
 long predictedNodeCount(double metricAreaValue, long boundaryNodes, int holes);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

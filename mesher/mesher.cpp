@@ -18,7 +18,7 @@ double expectedArea(const Domain& domain, const Mesh2& mesh) {
   return a;
 }
 
-} // namespace
+}  // namespace
 
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
   PlacementResult placement = placeNodes(domain, metric, options.placement);
@@ -46,4 +46,4 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   return result;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -31,12 +31,12 @@ struct MeshStats {
 };
 
 struct MeshResult {
-  Mesh2 mesh;                  ///< valid; boundary edges carry the domain's segment tags
-  std::vector<Metric2> metric; ///< the prescribed metric at each mesh vertex
+  Mesh2 mesh;                   ///< valid; boundary edges carry the domain's segment tags
+  std::vector<Metric2> metric;  ///< the prescribed metric at each mesh vertex
   MeshStats stats;
 };
 
 /// Meshes `domain` so that edges have unit length in `metric` (paper §3–4).
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options = {});
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -31,4 +31,4 @@ void AdjacencyLists::compact() {
   ends.clear();
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

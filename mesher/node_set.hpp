@@ -14,9 +14,9 @@
 namespace ablmg::mesher {
 
 enum class NodeKind : std::uint8_t {
-  Vertex,    ///< a corner of the PSLG: fixed
-  Segment,   ///< on a boundary loop between corners: slides along it
-  Interior   ///< inside the domain: moves freely, never leaves it
+  Vertex,   ///< a corner of the PSLG: fixed
+  Segment,  ///< on a boundary loop between corners: slides along it
+  Interior  ///< inside the domain: moves freely, never leaves it
 };
 
 struct NodeSet {
@@ -46,4 +46,4 @@ struct AdjacencyLists {
   void compact();
 };
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -6,4 +6,4 @@
 /// concatenated in order, no floating reductions across threads), so this changes times only.
 namespace ablmg::mesher {
 inline constexpr int kMinParallelItems = 2048;
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -119,24 +119,25 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDis
   return near > 0 ? double(unit) / double(near) : 1.0;
 }
 
-} // namespace
+}  // namespace
 
 PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
   ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
-                "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got " << options.timeStep << ", "
-                                                                             << options.mass << ", " << options.damping);
+                "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got "
+                    << options.timeStep << ", " << options.mass << ", " << options.damping);
   ABLMG_REQUIRE(options.metricLag >= 0 && options.metricLag <= 0.5,
                 "placeNodes: metricLag must be in [0, 0.5] (metric units), got " << options.metricLag);
-  ABLMG_REQUIRE(options.finalRelaxSteps >= 0, "placeNodes: finalRelaxSteps must be >= 0, got " << options.finalRelaxSteps);
+  ABLMG_REQUIRE(options.finalRelaxSteps >= 0,
+                "placeNodes: finalRelaxSteps must be >= 0, got " << options.finalRelaxSteps);
   ABLMG_REQUIRE(options.plateauSteps >= 0 && options.plateauGain >= 0,
                 "placeNodes: need plateauSteps >= 0 and plateauGain >= 0; got " << options.plateauSteps << ", "
-                                                                               << options.plateauGain);
-  ABLMG_REQUIRE(options.adjacencyRadius >= 1.5, "placeNodes: adjacencyRadius must be >= 1.5 (force range), got "
-                                                    << options.adjacencyRadius);
-  ABLMG_REQUIRE(options.defectPasses >= 0 && options.defectEvery >= 1 && options.defectShake >= 0 &&
-                    options.defectShake <= 0.5,
-                "placeNodes: need defectPasses >= 0, defectEvery >= 1, defectShake in [0, 0.5]; got "
-                    << options.defectPasses << ", " << options.defectEvery << ", " << options.defectShake);
+                                                                                << options.plateauGain);
+  ABLMG_REQUIRE(options.adjacencyRadius >= 1.5,
+                "placeNodes: adjacencyRadius must be >= 1.5 (force range), got " << options.adjacencyRadius);
+  ABLMG_REQUIRE(
+      options.defectPasses >= 0 && options.defectEvery >= 1 && options.defectShake >= 0 && options.defectShake <= 0.5,
+      "placeNodes: need defectPasses >= 0, defectEvery >= 1, defectShake in [0, 0.5]; got "
+          << options.defectPasses << ", " << options.defectEvery << ", " << options.defectShake);
   ThreadScope threads(options.threads);
   PlacementResult result;
   PlacementStats& st = result.stats;
@@ -147,7 +148,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   const int holes = int(domain.loops().size()) - 1;
   {
     const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo, metric, 64);
-    ABLMG_REQUIRE(coarse <= double(options.maxNodes), "placeNodes: the metric asks for about " << long(coarse)
+    ABLMG_REQUIRE(coarse <= double(options.maxNodes), "placeNodes: the metric asks for about "
+                                                          << long(coarse)
                                                           << " nodes, more than maxNodes = " << options.maxNodes);
   }
   const double areaM = metricArea(domain, geo, metric, 256);
@@ -155,8 +157,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   std::vector<double> arc;
   placeBoundaryNodes(geo, metric, nodes, arc);
   st.predictedNodes = predictedNodeCount(areaM, nodes.size(), holes);
-  ABLMG_REQUIRE(st.predictedNodes <= options.maxNodes, "placeNodes: predicted node count " << st.predictedNodes
-                                                           << " exceeds maxNodes = " << options.maxNodes);
+  ABLMG_REQUIRE(st.predictedNodes <= options.maxNodes,
+                "placeNodes: predicted node count " << st.predictedNodes << " exceeds maxNodes = " << options.maxNodes);
   const double spacing = std::sqrt(domain.area() / std::max<double>(st.predictedNodes, 1.0));
   const int firstInterior = nodes.size();
   placeInteriorNodes(geo, metric, nodes, spacing, options.lattice, options.warmStart);
@@ -196,7 +198,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
   // below an already small residual is polishing that can stall): it is measured against a
   // fresh lattice's, which is 0.5–0.7 on the paper disks (kLatticeResidual).
   constexpr double kLatticeResidual = 0.5;
-  const double reference = options.warmStart.empty() ? st.initialResidual : std::max(st.initialResidual, kLatticeResidual);
+  const double reference =
+      options.warmStart.empty() ? st.initialResidual : std::max(st.initialResidual, kLatticeResidual);
   const double target = std::max(options.tolerance, options.relativeTolerance * reference);
   const double sleepBelow = 0.5 * target;  // active set: see BubbleSystem::updateActivity
   bool allAwake = true;                    // the last residual covers every bubble
@@ -364,7 +367,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
         sys.resetTravel(far);
         refreshAdjacencyAround(adj, sys.referencePositions(), sys.metrics(), options.adjacencyRadius, far);
       } else {
-        refreshAdjacencyInPlace(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius, sys.movedSinceRefresh());
+        refreshAdjacencyInPlace(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius,
+                                sys.movedSinceRefresh());
         sys.clearMoved();
       }
       st.secondsAdjacency += since(t);
@@ -412,4 +416,4 @@ double nearestNeighbourShare(const PlacementResult& r, double lo, double hi) {
   return interior == 0 ? 1.0 : double(inRange) / double(interior);
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -41,8 +41,8 @@
 namespace ablmg::mesher {
 
 struct PlacementOptions {
-  double k0 = 1.0;            ///< force constant of eq. (7), paper §6
-  double mass = 1.0;          ///< m of eq. (5), paper §6
+  double k0 = 1.0;    ///< force constant of eq. (7), paper §6
+  double mass = 1.0;  ///< m of eq. (5), paper §6
   /// c and Δt: the paper's §6 values are c = 3.8429, Δt = 0.02. Our forces act in metric
   /// units (bubble_system.hpp), where one pair has stiffness |f'(1)| = k0 and the semi-implicit
   /// Euler step is stable up to Δt ≈ 0.6 for a hexagonal packing; with the paper's values the
@@ -53,14 +53,15 @@ struct PlacementOptions {
   /// figures move by about ±0.5 point from run to run of settings (the line refinement's ±10 %
   /// figure: 89.7–90.7 %); c = 0.35 meets every §4.3/eq. (4) target of issue 9 (README table).
   /// Set damping = 3.8429, timeStep = 0.02 for the paper's own run.
-  double damping = 0.35;      ///< c of eq. (5) (paper §6: 3.8429, see above)
-  double timeStep = 0.45;     ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
+  double damping = 0.35;   ///< c of eq. (5) (paper §6: 3.8429, see above)
+  double timeStep = 0.45;  ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   /// w of the pair force: eq. (8) (default, the paper's), or the eq. (3) averaged-metric
   /// length; bubble_force.hpp has the measurements (mesh quality vs the layer's H1 error).
   PairDistance pairDistance = PairDistance::Harmonic;
   double adjacencyRadius = 1.7;  ///< w-radius of the adjacency lists, paper §3.3
-  int adjacencyRefresh = 100; ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
-  int maxSteps = 2000;        ///< cap on dynamics steps; stats.hitStepCap says if it was hit
+  int adjacencyRefresh =
+      100;  ///< refresh the lists every k steps (§3.3), or earlier when a bubble travelled (radius − 1.5)/2
+  int maxSteps = 2000;  ///< cap on dynamics steps; stats.hitStepCap says if it was hit
   /// Convergence: stop when the residual (largest net force |f_i|_{M_i}, metric units; see
   /// bubble_system.hpp) has dropped below max(tolerance, relativeTolerance × initial residual),
   /// checked with every bubble awake, once the population has settled. The relative part is
@@ -109,13 +110,13 @@ struct PlacementOptions {
   /// Runs that stop on the quality plateau before the population settles (`ablmg remesh` of
   /// the ring benchmark) are unchanged. 0 = off.
   int defectPasses = 6;
-  int defectEvery = 20;        ///< steps between passes (the last one relaxes to convergence)
-  double defectShake = 0.3;    ///< kick, metric units (0.4 melts the packing: ring 86 %)
+  int defectEvery = 20;      ///< steps between passes (the last one relaxes to convergence)
+  double defectShake = 0.3;  ///< kick, metric units (0.4 melts the packing: ring 86 %)
   double defectMinShare = 0.05;
-  long maxNodes = 50'000'000; ///< refuse (InputError, before allocating) if the estimate N* exceeds this
-  std::uint64_t seed = 1;     ///< for any randomised choice; same seed, same nodes
-  int threads = 0;            ///< 0 = OpenMP default
-  bool bubblesOnly = false;   ///< informational: callers that only want the packing
+  long maxNodes = 50'000'000;  ///< refuse (InputError, before allocating) if the estimate N* exceeds this
+  std::uint64_t seed = 1;      ///< for any randomised choice; same seed, same nodes
+  int threads = 0;             ///< 0 = OpenMP default
+  bool bubblesOnly = false;    ///< informational: callers that only want the packing
   /// Warm start (issue 11): interior seed positions, e.g. the previous mesh's vertices in an
   /// adaptive loop; those that fit the metric's spacing replace lattice points (empty = cold).
   /// The relative target then refers to max(initial residual, 0.5), a fresh lattice's typical
@@ -132,22 +133,24 @@ struct PlacementStats {
   long initialNodes = 0, finalNodes = 0;
   long inserted = 0, deleted = 0;
   int steps = 0;
-  long activeBubbleSteps = 0;  ///< Σ over steps of the bubbles awake (the dynamics' real work; see BubbleSystem::updateActivity)
+  long activeBubbleSteps =
+      0;  ///< Σ over steps of the bubbles awake (the dynamics' real work; see BubbleSystem::updateActivity)
   bool hitStepCap = false;
-  bool stalled = false;        ///< stopped by the stall rule (PlacementOptions::stallSteps)
-  bool qualityPlateau = false; ///< stopped by the quality-plateau rule (PlacementOptions::plateauSteps)
+  bool stalled = false;         ///< stopped by the stall rule (PlacementOptions::stallSteps)
+  bool qualityPlateau = false;  ///< stopped by the quality-plateau rule (PlacementOptions::plateauSteps)
   double nearestInRange = 0;  ///< nearestNeighbourShare(result): interior nodes with a nearest neighbour at 0.85–1.15
-  double initialResidual = 0, finalResidual = 0;  ///< largest net bubble force in metric units (= c × terminal velocity)
-  int defectPasses = 0;                ///< defect annealing passes done (PlacementOptions::defectPasses)
+  double initialResidual = 0,
+         finalResidual = 0;                  ///< largest net bubble force in metric units (= c × terminal velocity)
+  int defectPasses = 0;                      ///< defect annealing passes done (PlacementOptions::defectPasses)
   long defectsFirst = -1, defectsLast = -1;  ///< defect nodes (degree ≠ 6) at the first and the last pass; −1 if none
   double secondsInitial = 0, secondsDynamics = 0, secondsAdjacency = 0, secondsPopulation = 0;
-  double secondsDefects = 0;           ///< defect annealing (topology, kicks, adjacency rebuilds)
+  double secondsDefects = 0;  ///< defect annealing (topology, kicks, adjacency rebuilds)
 };
 
 struct PlacementResult {
   NodeSet nodes;
-  AdjacencyLists adjacency;            ///< final lists, radius adjacencyRadius (metric sense)
-  std::vector<Metric2> metrics;        ///< the metric at each node's final position
+  AdjacencyLists adjacency;                 ///< final lists, radius adjacencyRadius (metric sense)
+  std::vector<Metric2> metrics;             ///< the metric at each node's final position
   std::vector<BoundaryEdge> boundaryEdges;  ///< node ids along every loop, domain on the left, with segment tags
   PlacementStats stats;
 };
@@ -159,4 +162,4 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
 /// hexagonal packing has every node at 1. 1 when there is no interior node. O(Σ list sizes).
 double nearestNeighbourShare(const PlacementResult& result, double lo = 0.85, double hi = 1.15);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -62,7 +62,8 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   // Deletions, most overlapped first.
   std::vector<int> del;
   for (int i = 0; i < n; ++i)
-    if (nodes.kinds[i] == NodeKind::Interior && (alpha[i] > delAbove || (alpha[i] > o.squeezeAlpha && nearest[i] < o.squeezeBelow)))
+    if (nodes.kinds[i] == NodeKind::Interior &&
+        (alpha[i] > delAbove || (alpha[i] > o.squeezeAlpha && nearest[i] < o.squeezeBelow)))
       del.push_back(i);
   // Order: overlap ratio plus the number of neighbours closer than squeezeBelow, so that an
   // interstitial (three close neighbours) goes before the lattice nodes it squeezes (one).
@@ -104,7 +105,8 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
   constexpr int kCand = 12;
   const int nIns = int(ins.size());
   std::vector<Vec2> candPos(std::size_t(nIns) * kCand);
-  std::vector<double> candGap(std::size_t(nIns) * kCand, -1.0);  // −1: outside, or too close to the boundary or a neighbour
+  std::vector<double> candGap(std::size_t(nIns) * kCand,
+                              -1.0);  // −1: outside, or too close to the boundary or a neighbour
 #pragma omp parallel for schedule(dynamic, 64) if (nIns >= kMinParallelItems)
   for (int q = 0; q < nIns; ++q) {
     const int i = ins[std::size_t(q)];
@@ -143,7 +145,8 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
       if (candGap[slot] < 0) continue;
       const Vec2 cand = candPos[slot];
       double dmin = candGap[slot];
-      addedGrid.forEachIncremental(cand, minGap * h1, [&](int a) { dmin = std::min(dmin, mi.length(added[a].first - cand)); });
+      addedGrid.forEachIncremental(cand, minGap * h1,
+                                   [&](int a) { dmin = std::min(dmin, mi.length(added[a].first - cand)); });
       if (dmin > bestD) {
         bestD = dmin;
         best = cand;
@@ -167,11 +170,13 @@ PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, 
     std::vector<Vec2> pts;
     for (const auto& a : added) pts.push_back(a.first);
     std::vector<Metric2> am(pts.size());
-    if (metric.isConstant()) std::fill(am.begin(), am.end(), added.front().second);
-    else metric.evaluate(pts, am);
+    if (metric.isConstant())
+      std::fill(am.begin(), am.end(), added.front().second);
+    else
+      metric.evaluate(pts, am);
     for (std::size_t k = 0; k < pts.size(); ++k) sys.addInterior(pts[k], am[k]);
   }
   return change;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -50,15 +50,16 @@ std::vector<double> overlapRatios(std::span<const Vec2> positions, std::span<con
 
 struct PopulationOptions {
   double deleteAbove = 8.0, insertBelow = 5.3;
-  double squeezeBelow = 0.8, squeezeAlpha = 6.3;  ///< also delete where the nearest neighbour is closer than this and α above that
-  double minGap = 0.85;  ///< an insertion point must be at least this far (metric) from the node's neighbours
+  double squeezeBelow = 0.8,
+         squeezeAlpha = 6.3;  ///< also delete where the nearest neighbour is closer than this and α above that
+  double minGap = 0.85;       ///< an insertion point must be at least this far (metric) from the node's neighbours
   double steerDeleteAbove = 6.7, steerInsertBelow = 5.8;
-  double steerMinGap = 0.65;    ///< minGap while steering up (below the aim)
-  double steerTolerance = 0.01; ///< steer down only when more than this (relative) above the aim
-  double targetMargin = 0.01;   ///< aim = (1 + targetMargin) · target (see above)
-  long target = -1;  ///< N*; < 0 = no steering
-  bool steerUp = true;  ///< steering up allowed (placeNodes clears it, see steerWindow)
-  int steerWindow = 4;  ///< passes: placeNodes ends steering up once the count has not grown over this many
+  double steerMinGap = 0.65;     ///< minGap while steering up (below the aim)
+  double steerTolerance = 0.01;  ///< steer down only when more than this (relative) above the aim
+  double targetMargin = 0.01;    ///< aim = (1 + targetMargin) · target (see above)
+  long target = -1;              ///< N*; < 0 = no steering
+  bool steerUp = true;           ///< steering up allowed (placeNodes clears it, see steerWindow)
+  int steerWindow = 4;           ///< passes: placeNodes ends steering up once the count has not grown over this many
 };
 
 struct PopulationChange {
@@ -73,4 +74,4 @@ struct PopulationChange {
 PopulationChange adjustPopulation(BubbleSystem& sys, const AdjacencyLists& adj, const DomainGeometry& geo,
                                   const MetricField& metric, const PopulationOptions& options);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

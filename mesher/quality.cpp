@@ -36,7 +36,7 @@ std::string percent(double fraction) {
   return buf;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<double> edgeMetricLengths(const Mesh2& mesh, std::span<const Metric2> metrics) {
   requireOnePerVertex(mesh, metrics, "edgeMetricLengths");
@@ -150,12 +150,20 @@ nlohmann::json toJson(const MeshQuality& q) {
           {"valid", q.valid},
           {"first_problem", q.firstProblem},
           {"edge_length",
-           {{"min", l.min}, {"mean", l.mean}, {"max", l.max}, {"in_sqrt2", l.inSqrt2}, {"within_10pct", l.within10},
+           {{"min", l.min},
+            {"mean", l.mean},
+            {"max", l.max},
+            {"in_sqrt2", l.inSqrt2},
+            {"within_10pct", l.within10},
             {"deviation", {{"e", l.e}, {"bins", l.deviation}}}}},
           {"element_quality",
            {{"measure", q.dimension == 2 ? "q = 4*sqrt(3)*A_M/(l1^2+l2^2+l3^2)" : "Lee alpha, eqs. (19)-(20)"},
-            {"min", el.min}, {"mean", el.mean}, {"max", el.max}, {"bins", el.bins}}},
-          {"lee_alpha", {{"min", q.leeAlpha.min}, {"mean", q.leeAlpha.mean}, {"max", q.leeAlpha.max}, {"bins", q.leeAlpha.bins}}}};
+            {"min", el.min},
+            {"mean", el.mean},
+            {"max", el.max},
+            {"bins", el.bins}}},
+          {"lee_alpha",
+           {{"min", q.leeAlpha.min}, {"mean", q.leeAlpha.mean}, {"max", q.leeAlpha.max}, {"bins", q.leeAlpha.bins}}}};
 }
 
 std::string toText(const MeshQuality& q) {
@@ -174,7 +182,8 @@ std::string toText(const MeshQuality& q) {
   s += buf;
   s += "    <=e " + percent(l.deviation[0]);
   for (int k = 1; k < 5; ++k)
-    s += "  " + (k == 1 ? std::string() : std::to_string(k)) + "e-" + std::to_string(k + 1) + "e " + percent(l.deviation[k]);
+    s += "  " + (k == 1 ? std::string() : std::to_string(k)) + "e-" + std::to_string(k + 1) + "e " +
+         percent(l.deviation[k]);
   s += "  >5e " + percent(l.deviation[5]) + "\n";
   std::snprintf(buf, sizeof buf, "element quality %s:   min %.4g  mean %.4g  max %.4g\n",
                 q.dimension == 2 ? "q" : "alpha (Lee)", el.min, el.mean, el.max);
@@ -189,12 +198,12 @@ std::string toText(const MeshQuality& q) {
   };
   bins(el);
   if (q.dimension == 2) {
-    std::snprintf(buf, sizeof buf, "alpha (Lee, eqs. 19-20, vertex metrics):   min %.4g  mean %.4g  max %.4g\n", q.leeAlpha.min,
-                  q.leeAlpha.mean, q.leeAlpha.max);
+    std::snprintf(buf, sizeof buf, "alpha (Lee, eqs. 19-20, vertex metrics):   min %.4g  mean %.4g  max %.4g\n",
+                  q.leeAlpha.min, q.leeAlpha.mean, q.leeAlpha.max);
     s += buf;
     bins(q.leeAlpha);
   }
   return s;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

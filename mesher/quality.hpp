@@ -41,9 +41,9 @@ std::vector<double> leeAlphas(const Mesh2& mesh, std::span<const Metric2> metric
 struct EdgeLengthStats {
   long count = 0;
   double min = 0, mean = 0, max = 0;  ///< of l (all 0 when count == 0)
-  double inSqrt2 = 0;   ///< fraction with l ∈ [1/√2, √2]
-  double within10 = 0;  ///< fraction with |l − 1| ≤ 0.1
-  double e = 0.05;      ///< bin width of the deviation histogram (paper: e = 5%)
+  double inSqrt2 = 0;                 ///< fraction with l ∈ [1/√2, √2]
+  double within10 = 0;                ///< fraction with |l − 1| ≤ 0.1
+  double e = 0.05;                    ///< bin width of the deviation histogram (paper: e = 5%)
   /// Fractions of edges with ε ≤ e, e < ε ≤ 2e, …, 4e < ε ≤ 5e, ε > 5e (Table 1 plus the
   /// tail). Sum to 1 when count > 0.
   std::array<double, 6> deviation{};
@@ -62,10 +62,10 @@ ElementQualityStats elementQualityStats(std::span<const double> q);
 
 /// Everything `ablmg stats` reports.
 struct MeshQuality {
-  int dimension = 2;            ///< 2: planar Mesh2; 3: surface (element measure = Lee's α)
+  int dimension = 2;  ///< 2: planar Mesh2; 3: surface (element measure = Lee's α)
   long vertices = 0, triangles = 0, edges = 0;
-  bool valid = true;            ///< Mesh2::validate() (2D) / checkManifold() (3D)
-  std::string firstProblem;     ///< empty when valid
+  bool valid = true;         ///< Mesh2::validate() (2D) / checkManifold() (3D)
+  std::string firstProblem;  ///< empty when valid
   EdgeLengthStats edgeLengths;
   ElementQualityStats elements;
   ElementQualityStats leeAlpha;  ///< 2D: leeAlphas(); 3D: the same as elements (α is the measure there)
@@ -83,4 +83,4 @@ nlohmann::json toJson(const MeshQuality& q);
 /// A short human-readable table (several lines, each ending in '\n').
 std::string toText(const MeshQuality& q);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

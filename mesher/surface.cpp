@@ -17,7 +17,7 @@ constexpr double kPi = std::numbers::pi;
 
 /// A built-in surface: closed-form r and derivatives.
 class FormulaSurface final : public ParametricSurface {
-public:
+ public:
   using PointFn = std::function<Vec3(double, double)>;
   using DerivFn = std::function<std::array<Vec3, 2>(double, double)>;
   FormulaSurface(std::string text, Domain domain, PointFn r, DerivFn dr, bool periodic = false)
@@ -28,7 +28,7 @@ public:
   const Domain& parameterDomain() const override { return domain_; }
   std::string description() const override { return text_; }
 
-private:
+ private:
   std::string text_;
   Domain domain_;
   PointFn r_;
@@ -37,7 +37,7 @@ private:
 };
 
 class ExpressionSurface final : public ParametricSurface {
-public:
+ public:
   ExpressionSurface(const std::string& x, const std::string& y, const std::string& z, Domain domain,
                     const std::string& source, bool periodic)
       : domain_(std::move(domain)), text_("x=" + x + ", y=" + y + ", z=" + z), periodic_(periodic) {
@@ -66,7 +66,7 @@ public:
   std::string description() const override { return text_; }
   bool periodic() const override { return periodic_; }
 
-private:
+ private:
   Domain domain_;
   std::string text_;
   bool periodic_;
@@ -74,7 +74,7 @@ private:
   mu::Parser p_[3];
 };
 
-} // namespace
+}  // namespace
 
 std::array<Vec3, 2> ParametricSurface::derivatives(const Vec2& uv) const {
   const double hu = 1e-6 * (1 + std::abs(uv.x())), hv = 1e-6 * (1 + std::abs(uv.y()));
@@ -95,7 +95,10 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
   if (name == "paper-fig16")
     return std::make_unique<FormulaSurface>(
         builtinSurfaceList()[0], Domain::rectangle(-1, -1, 1, 1),
-        [](double u, double v) { const double c = std::cos(kPi * (u * u + v * v)); return Vec3(u, v, c * c); },
+        [](double u, double v) {
+          const double c = std::cos(kPi * (u * u + v * v));
+          return Vec3(u, v, c * c);
+        },
         [](double u, double v) {
           const double s2 = std::sin(2 * kPi * (u * u + v * v));  // d/du cos²(s) = −sin(2s)·2πu
           return std::array<Vec3, 2>{Vec3(1, 0, -2 * kPi * u * s2), Vec3(0, 1, -2 * kPi * v * s2)};
@@ -117,8 +120,9 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
         },
         [](double u, double v) {
           const double w = 1 + 0.3 * std::cos(v);
-          return std::array<Vec3, 2>{Vec3(-w * std::sin(u), w * std::cos(u), 0),
-                                     Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
+          return std::array<Vec3, 2>{
+              Vec3(-w * std::sin(u), w * std::cos(u), 0),
+              Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
         });
   if (name == "torus-closed")
     return std::make_unique<FormulaSurface>(
@@ -129,27 +133,33 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
         },
         [](double u, double v) {
           const double w = 1 + 0.3 * std::cos(v);
-          return std::array<Vec3, 2>{Vec3(-w * std::sin(u), w * std::cos(u), 0),
-                                     Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
+          return std::array<Vec3, 2>{
+              Vec3(-w * std::sin(u), w * std::cos(u), 0),
+              Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
         },
         true);
   if (name == "cylinder")
     return std::make_unique<FormulaSurface>(
         builtinSurfaceList()[3], Domain::rectangle(0, 0, kPi, 2),
         [](double u, double v) { return Vec3(std::cos(u), std::sin(u), v); },
-        [](double u, double) { return std::array<Vec3, 2>{Vec3(-std::sin(u), std::cos(u), 0), Vec3(0, 0, 1)}; });
+        [](double u, double) {
+          return std::array<Vec3, 2>{Vec3(-std::sin(u), std::cos(u), 0), Vec3(0, 0, 1)};
+        });
   if (name == "saddle")
     return std::make_unique<FormulaSurface>(
         builtinSurfaceList()[4], Domain::rectangle(-1, -1, 1, 1),
         [](double u, double v) { return Vec3(u, v, u * u - v * v); },
-        [](double u, double v) { return std::array<Vec3, 2>{Vec3(1, 0, 2 * u), Vec3(0, 1, -2 * v)}; });
-  throw InputError("surface: unknown built-in '" + name +
-                   "' (known: paper-fig16, sphere-patch, torus, torus-closed, cylinder, saddle; see `ablmg surface --list`)");
+        [](double u, double v) {
+          return std::array<Vec3, 2>{Vec3(1, 0, 2 * u), Vec3(0, 1, -2 * v)};
+        });
+  throw InputError(
+      "surface: unknown built-in '" + name +
+      "' (known: paper-fig16, sphere-patch, torus, torus-closed, cylinder, saddle; see `ablmg surface --list`)");
 }
 
-std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y, const std::string& z,
-                                                         double u0, double v0, double u1, double v1,
-                                                         const std::string& source, bool periodic) {
+std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y,
+                                                         const std::string& z, double u0, double v0, double u1,
+                                                         double v1, const std::string& source, bool periodic) {
   return std::make_unique<ExpressionSurface>(x, y, z, Domain::rectangle(u0, v0, u1, v1), source, periodic);
 }
 
@@ -169,9 +179,9 @@ Metric2 InducedMetricField::at(const Vec2& uv) const {
   // rank test on the first fundamental form JᵀJ: relative determinant
   const Eigen::Matrix2d g = J.transpose() * J;
   const double rel = g.determinant() / std::max(1e-300, g(0, 0) * g(1, 1));
-  ABLMG_REQUIRE(J.allFinite() && rel > 1e-12,
-                "surface: the Jacobian [r_u r_v] is rank-deficient at (u, v) = (" << uv.x() << ", " << uv.y()
-                                                                                   << ") (a pole or fold); restrict the parameter domain");
+  ABLMG_REQUIRE(J.allFinite() && rel > 1e-12, "surface: the Jacobian [r_u r_v] is rank-deficient at (u, v) = ("
+                                                  << uv.x() << ", " << uv.y()
+                                                  << ") (a pole or fold); restrict the parameter domain");
   std::ostringstream where;
   where << "induced metric at (u, v) = (" << uv.x() << ", " << uv.y() << ")";
   return Metric2::fromTensor(m2(0, 0), 0.5 * (m2(0, 1) + m2(1, 0)), m2(1, 1), where.str());
@@ -179,7 +189,8 @@ Metric2 InducedMetricField::at(const Vec2& uv) const {
 
 double SurfaceMesh::area() const {
   double a = 0;
-  for (const auto& t : triangles) a += 0.5 * (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).norm();
+  for (const auto& t : triangles)
+    a += 0.5 * (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]).norm();
   return a;
 }
 
@@ -316,10 +327,11 @@ std::string checkManifold(const SurfaceMesh& mesh) {
     while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
     const std::string name = "edge (" + std::to_string(half[i][0]) + ", " + std::to_string(half[i][1]) + ")";
     if (j - i > 2) return name + " lies in " + std::to_string(j - i) + " triangles";
-    if (j - i == 2 && half[i][2] == half[i + 1][2]) return name + " is used twice in the same direction (inconsistent orientation)";
+    if (j - i == 2 && half[i][2] == half[i + 1][2])
+      return name + " is used twice in the same direction (inconsistent orientation)";
     i = j;
   }
   return "";
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -23,7 +23,7 @@ namespace ablmg::mesher {
 using Vec3 = Eigen::Vector3d;
 
 class ParametricSurface {
-public:
+ public:
   virtual ~ParametricSurface() = default;
   virtual Vec3 point(const Vec2& uv) const = 0;
   /// First derivatives r_u, r_v. Default: central differences with step 1e-6·(1+|u|) — the
@@ -56,11 +56,11 @@ Metric3Field isotropicMetric3(double h);
 /// M2 = Jᵀ M3 J at (u,v) (eq. 16). A rank-deficient Jacobian (a pole, a fold) gives an
 /// InputError naming (u,v) — never a NaN metric.
 class InducedMetricField final : public MetricField {
-public:
+ public:
   InducedMetricField(const ParametricSurface& surface, Metric3Field m3) : surface_(surface), m3_(std::move(m3)) {}
   Metric2 at(const Vec2& uv) const override;
 
-private:
+ private:
   const ParametricSurface& surface_;
   Metric3Field m3_;
 };
@@ -96,4 +96,4 @@ std::string checkManifold(const SurfaceMesh& mesh);
 /// Edges that lie in one triangle only (0 for a closed surface).
 long countBoundaryEdges(const SurfaceMesh& mesh);
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

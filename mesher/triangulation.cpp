@@ -43,14 +43,17 @@ std::uint64_t hilbertIndex(std::uint32_t x, std::uint32_t y) {
     const std::uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
     d += std::uint64_t(s) * s * ((3 * rx) ^ ry);
     if (ry == 0) {
-      if (rx == 1) { x = 65535 - x; y = 65535 - y; }
+      if (rx == 1) {
+        x = 65535 - x;
+        y = 65535 - y;
+      }
       std::swap(x, y);
     }
   }
   return d;
 }
 
-} // namespace
+}  // namespace
 
 Triangulation::Triangulation(std::span<const Vec2> points) : n_(int(points.size())) {
   ABLMG_REQUIRE(n_ >= 3, "triangulation: at least 3 points are needed, got " + std::to_string(n_));
@@ -106,7 +109,10 @@ int Triangulation::locate(const Vec2& q, int& onEdge) const {
         moved = true;
         break;
       }
-      if (o == 0) { ++zeros; onEdge = k; }
+      if (o == 0) {
+        ++zeros;
+        onEdge = k;
+      }
     }
     if (!moved) {
       if (zeros >= 2) return -1;  // q is a vertex
@@ -119,7 +125,10 @@ int Triangulation::locate(const Vec2& q, int& onEdge) const {
 void Triangulation::setNeighbour(int t, int oldN, int newN) {
   if (t < 0) return;
   for (int k = 0; k < 3; ++k)
-    if (nbr_[t][k] == oldN) { nbr_[t][k] = newN; return; }
+    if (nbr_[t][k] == oldN) {
+      nbr_[t][k] = newN;
+      return;
+    }
   ABLMG_FAIL("triangulation: broken neighbour links");
 }
 
@@ -134,15 +143,20 @@ void Triangulation::insert(int v) {
     const int a = tri_[t][0], b = tri_[t][1], c = tri_[t][2];
     const int na = nbr_[t][0], nb = nbr_[t][1], nc = nbr_[t][2];
     const int t1 = int(tri_.size()), t2 = t1 + 1;
-    tri_[t] = {a, b, v};  nbr_[t] = {t1, t2, nc};
-    tri_.push_back({b, c, v}); nbr_.push_back({t2, t, na});
-    tri_.push_back({c, a, v}); nbr_.push_back({t, t1, nb});
+    tri_[t] = {a, b, v};
+    nbr_[t] = {t1, t2, nc};
+    tri_.push_back({b, c, v});
+    nbr_.push_back({t2, t, na});
+    tri_.push_back({c, a, v});
+    nbr_.push_back({t, t1, nb});
     setNeighbour(na, t, t1);
     setNeighbour(nb, t, t2);
     vtri_[a] = vtri_[b] = vtri_[v] = t;
     vtri_[c] = t1;
     last_ = t;
-    legalize(v, t); legalize(v, t1); legalize(v, t2);
+    legalize(v, t);
+    legalize(v, t1);
+    legalize(v, t2);
     return;
   }
   // On the edge opposite local vertex k: split the two triangles sharing it into four.
@@ -155,17 +169,24 @@ void Triangulation::insert(int v) {
   const int tAB = nbr_[t][prev3(k)], tCA = nbr_[t][next3(k)];
   const int uBD = nbr_[u][next3(j)], uDC = nbr_[u][prev3(j)];
   const int t2 = int(tri_.size()), u2 = t2 + 1;
-  tri_[t] = {a, b, v}; nbr_[t] = {u2, t2, tAB};
-  tri_.push_back({a, v, c}); nbr_.push_back({u, tCA, t});
-  tri_[u] = {d, c, v}; nbr_[u] = {t2, u2, uDC};
-  tri_.push_back({d, v, b}); nbr_.push_back({t, uBD, u});
+  tri_[t] = {a, b, v};
+  nbr_[t] = {u2, t2, tAB};
+  tri_.push_back({a, v, c});
+  nbr_.push_back({u, tCA, t});
+  tri_[u] = {d, c, v};
+  nbr_[u] = {t2, u2, uDC};
+  tri_.push_back({d, v, b});
+  nbr_.push_back({t, uBD, u});
   setNeighbour(tCA, t, t2);
   setNeighbour(uBD, u, u2);
   vtri_[a] = vtri_[b] = vtri_[v] = t;
   vtri_[c] = t2;
   vtri_[d] = u;
   last_ = t;
-  legalize(v, t); legalize(v, t2); legalize(v, u); legalize(v, u2);
+  legalize(v, t);
+  legalize(v, t2);
+  legalize(v, u);
+  legalize(v, u2);
 }
 
 void Triangulation::legalize(int v, int t0) {
@@ -201,13 +222,18 @@ void Triangulation::flip(int t, int k) {
     lt = std::uint8_t(bit(u, next3(j)) | (bit(t, prev3(k)) << 2));
     lu = std::uint8_t(bit(u, prev3(j)) | (bit(t, next3(k)) << 1));
   }
-  tri_[t] = {a, b, d}; nbr_[t] = {uBD, u, tAB};
-  tri_[u] = {a, d, c}; nbr_[u] = {uDC, tCA, t};
+  tri_[t] = {a, b, d};
+  nbr_[t] = {uBD, u, tAB};
+  tri_[u] = {a, d, c};
+  nbr_[u] = {uDC, tCA, t};
   setNeighbour(uBD, u, t);
   setNeighbour(tCA, t, u);
   vtri_[a] = vtri_[b] = vtri_[d] = t;
   vtri_[c] = u;
-  if (!lockBits_.empty()) { lockBits_[t] = lt; lockBits_[u] = lu; }
+  if (!lockBits_.empty()) {
+    lockBits_[t] = lt;
+    lockBits_[u] = lu;
+  }
 }
 
 std::pair<int, int> Triangulation::findDirectedEdge(int a, int b) const {
@@ -265,7 +291,11 @@ bool Triangulation::recoverEdge(int a, int b) {
     const int xi = tri_[t][next3(i)], yi = tri_[t][prev3(i)];
     const int ox = orient2d(pa, p_[xi], pb), oy = orient2d(pa, p_[yi], pb);
     if (ox == 0 && (p_[xi] - pa).dot(pb - pa) > 0) return false;  // a vertex on the segment
-    if (ox > 0 && oy < 0) { x = xi; y = yi; break; }
+    if (ox > 0 && oy < 0) {
+      x = xi;
+      y = yi;
+      break;
+    }
     t = nbr_[t][next3(i)];
     if (t < 0) return false;
   }
@@ -284,7 +314,10 @@ bool Triangulation::recoverEdge(int a, int b) {
     if (z == b) break;
     const int o = orient2d(pa, pb, p_[z]);
     if (o == 0) return false;
-    if (o > 0) y = z; else x = z;
+    if (o > 0)
+      y = z;
+    else
+      x = z;
     t = u;
   }
   // Sloan: flip crossed edges whose quadrilateral is strictly convex until none crosses ab.
@@ -322,7 +355,10 @@ void Triangulation::classify(std::span<const std::array<int, 2>> boundary) {
   auto seed = [&](int t, signed char l) {
     if (t < 0) return;
     if (label[t] >= 0 && label[t] != l) ABLMG_FAIL("connect: the boundary does not separate inside from outside");
-    if (label[t] < 0) { label[t] = l; stack.push_back(t); }
+    if (label[t] < 0) {
+      label[t] = l;
+      stack.push_back(t);
+    }
   };
   for (const auto& [a, b] : boundary) {
     const auto [ti, ki] = findDirectedEdge(a, b);
@@ -374,7 +410,10 @@ long Triangulation::flipWhile(const std::function<bool(int, int, int, int)>& sho
     const int y = tri_[t][k], w = tri_[u][j];
     if (orient2d(p_[y], p_[w], p_[x]) * orient2d(p_[y], p_[w], p_[z]) >= 0) continue;  // not strictly convex
     if (!shouldFlip(x, z, y, w)) continue;
-    if (flips >= maxFlips) { capHit = true; break; }
+    if (flips >= maxFlips) {
+      capHit = true;
+      break;
+    }
     flip(t, k);
     ++flips;
     queue.push_back({x, y});
@@ -385,4 +424,4 @@ long Triangulation::flipWhile(const std::function<bool(int, int, int, int)>& sho
   return flips;
 }
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

@@ -23,7 +23,7 @@
 namespace ablmg::mesher {
 
 class Triangulation {
-public:
+ public:
   /// Delaunay triangulation of `points` (plus the three enclosing vertices). Throws
   /// InputError if two points coincide or a coordinate is not finite.
   explicit Triangulation(std::span<const Vec2> points);
@@ -57,14 +57,14 @@ public:
   /// done; `capHit` says whether the cap stopped it.
   long flipWhile(const std::function<bool(int x, int z, int y, int w)>& shouldFlip, long maxFlips, bool& capHit);
 
-private:
+ private:
   int n_ = 0;
   std::vector<Vec2> p_;
   std::vector<std::array<int, 3>> tri_, nbr_;
-  std::vector<int> vtri_;            ///< one triangle incident to each vertex
+  std::vector<int> vtri_;               ///< one triangle incident to each vertex
   std::vector<std::uint8_t> lockBits_;  ///< bit k of triangle t: the edge opposite k is locked
   std::vector<char> inside_;
-  int last_ = 0;                     ///< walk start
+  int last_ = 0;  ///< walk start
 
   void insert(int v);
   int locate(const Vec2& q, int& onEdge) const;
@@ -75,4 +75,4 @@ private:
   bool edgeLocked(int t, int k) const { return (lockBits_[t] >> k) & 1; }
 };
 
-} // namespace ablmg::mesher
+}  // namespace ablmg::mesher

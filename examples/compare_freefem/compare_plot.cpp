@@ -63,10 +63,9 @@ Table readCsv(const std::string& path) {
       double v = 0;
       try {
         v = std::stod(cell, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      ABLMG_REQUIRE(used == cell.size() && !cell.empty(), path << ":" << lineNo << ": '" << cell << "' is not a number");
+      } catch (const std::exception&) { used = 0; }
+      ABLMG_REQUIRE(used == cell.size() && !cell.empty(),
+                    path << ":" << lineNo << ": '" << cell << "' is not a number");
       t.columns[names[k]].push_back(v);
     }
     ABLMG_REQUIRE(k == names.size(), path << ":" << lineNo << ": " << k << " cells, header has " << names.size());
@@ -95,7 +94,7 @@ std::string fmt(const char* f, double x) {
   return buf;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) try {
   std::map<std::string, std::string> arg{{"--freefem-wall", ""}, {"--ablmg-wall", ""}};
@@ -152,7 +151,8 @@ int main(int argc, char** argv) try {
        << "Cycle k of both loops targets the same vertex count (FreeFem's N_k). Ratios are ablmg's error over "
           "FreeFem's adapted curve (cycles >= 1) interpolated log-log at ablmg's N (* = extrapolated along the end "
           "segment; cycle 0 = both uniform start meshes, compared directly). Times per cycle: solve on mesh k, then "
-          "build mesh k+1 (FreeFem: adaptmesh, CPU s from clock(); ablmg: recover + metric, then the remesh, wall s).\n\n"
+          "build mesh k+1 (FreeFem: adaptmesh, CPU s from clock(); ablmg: recover + metric, then the remesh, wall "
+          "s).\n\n"
        << "| cycle | N FreeFem | N ablmg | L2 FreeFem | L2 ablmg | L2 ratio | H1 FreeFem | H1 ablmg | H1 ratio "
           "| FreeFem solve | FreeFem remesh | ablmg solve | ablmg recover+metric | ablmg remesh |\n"
        << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -163,10 +163,12 @@ int main(int argc, char** argv) try {
       else
         os << " | ";
       os << " | " << (k < nab ? fmt("%.0f", ab["vertices"][k]) : "");
-      os << " | " << (k < nff ? fmt("%.3e", ff["l2_error"][k]) : "") << " | " << (k < nab ? fmt("%.3e", ab["l2_error"][k]) : "")
-         << " | " << (k < nab ? fmt("%.2f", ratioL2[k]) + (extrapolated[k] ? "*" : "") : "");
-      os << " | " << (k < nff ? fmt("%.4f", ff["h1_error"][k]) : "") << " | " << (k < nab ? fmt("%.4f", ab["h1_error"][k]) : "")
-         << " | " << (k < nab ? fmt("%.2f", ratioH1[k]) + (extrapolated[k] ? "*" : "") : "");
+      os << " | " << (k < nff ? fmt("%.3e", ff["l2_error"][k]) : "") << " | "
+         << (k < nab ? fmt("%.3e", ab["l2_error"][k]) : "") << " | "
+         << (k < nab ? fmt("%.2f", ratioL2[k]) + (extrapolated[k] ? "*" : "") : "");
+      os << " | " << (k < nff ? fmt("%.4f", ff["h1_error"][k]) : "") << " | "
+         << (k < nab ? fmt("%.4f", ab["h1_error"][k]) : "") << " | "
+         << (k < nab ? fmt("%.2f", ratioH1[k]) + (extrapolated[k] ? "*" : "") : "");
       if (k < nff) {
         ffSolve += ff["t_solve"][k], ffMesh += ff["t_mesh"][k];
         os << " | " << fmt("%.2f", ff["t_solve"][k]) << " | " << fmt("%.2f", ff["t_mesh"][k]);
@@ -184,8 +186,10 @@ int main(int argc, char** argv) try {
     }
     const double abFirstMesh = ab["t_mesh"][0];  // the uniform start mesh, not a remesh
     os << "| sum |  |  |  |  |  |  |  |  | " << fmt("%.2f", ffSolve) << " | " << fmt("%.2f", ffMesh) << " | "
-       << fmt("%.2f", abSolve) << " | " << fmt("%.2f", abMetric) << " | " << fmt("%.2f", abMesh - abFirstMesh) << " |\n\n";
-    os << "ablmg's start mesh (cycle 0, uniform metric) took " << fmt("%.2f", abFirstMesh) << " s; FreeFem's is square(20,20).\n\n";
+       << fmt("%.2f", abSolve) << " | " << fmt("%.2f", abMetric) << " | " << fmt("%.2f", abMesh - abFirstMesh)
+       << " |\n\n";
+    os << "ablmg's start mesh (cycle 0, uniform metric) took " << fmt("%.2f", abFirstMesh)
+       << " s; FreeFem's is square(20,20).\n\n";
     os << "Rates (log-log least squares over the last " << window << " cycles; optimal P1: L2 -1, H1 -0.5): FreeFem L2 "
        << fmt("%.3f", ffRateL2) << ", H1 " << fmt("%.3f", ffRateH1) << "; ablmg L2 " << fmt("%.3f", abRateL2) << ", H1 "
        << fmt("%.3f", abRateH1) << ".\n\n";
@@ -205,10 +209,10 @@ int main(int argc, char** argv) try {
   io::PictureOptions plot;
   plot.width = 900;
   const std::string l2png = (tmp / "l2.png").string(), h1png = (tmp / "h1.png").string();
-  io::drawLogLogPlot(l2png, {curve("FreeFem++ L2", ff, "l2_error"), curve("ablmg L2", ab, "l2_error")}, {-1.0}, "vertices N",
-                     "L2 error", "L2 error (P1), wave front", plot);
-  io::drawLogLogPlot(h1png, {curve("FreeFem++ H1", ff, "h1_error"), curve("ablmg H1", ab, "h1_error")}, {-0.5}, "vertices N",
-                     "H1 error", "H1 seminorm error (P1), wave front", plot);
+  io::drawLogLogPlot(l2png, {curve("FreeFem++ L2", ff, "l2_error"), curve("ablmg L2", ab, "l2_error")}, {-1.0},
+                     "vertices N", "L2 error", "L2 error (P1), wave front", plot);
+  io::drawLogLogPlot(h1png, {curve("FreeFem++ H1", ff, "h1_error"), curve("ablmg H1", ab, "h1_error")}, {-0.5},
+                     "vertices N", "H1 error", "H1 seminorm error (P1), wave front", plot);
   const Mesh2 ffMeshFinal = io::readMesh(arg["--freefem-mesh"]);
   const std::string abMeshPath = (fs::path(arg["--ablmg"]) / ("cycle_" + std::to_string(nab - 1) + ".mesh")).string();
   const Mesh2 abMeshFinal = io::readMesh(abMeshPath);
@@ -220,11 +224,11 @@ int main(int argc, char** argv) try {
   io::drawMesh(abpng, abMeshFinal, {}, "", meshOptions);
   io::PictureOptions page;
   page.width = 1800;
-  io::tilePictures(png.string(), {l2png, h1png, ffpng, abpng}, 2,
-                   {"", "",
-                    "FreeFem++ adaptmesh, final mesh: " + std::to_string(ffMeshFinal.numVertices()) + " vertices",
-                    "ablmg, final mesh: " + std::to_string(abMeshFinal.numVertices()) + " vertices"},
-                   page);
+  io::tilePictures(
+      png.string(), {l2png, h1png, ffpng, abpng}, 2,
+      {"", "", "FreeFem++ adaptmesh, final mesh: " + std::to_string(ffMeshFinal.numVertices()) + " vertices",
+       "ablmg, final mesh: " + std::to_string(abMeshFinal.numVertices()) + " vertices"},
+      page);
   fs::remove_all(tmp);
   std::cout << "Wrote " << arg["--md"] << " and " << png.string() << "\n";
   return 0;

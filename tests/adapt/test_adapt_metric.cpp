@@ -17,7 +17,7 @@ std::vector<double> waveFront(const Mesh2& mesh) {
   const Eigen::VectorXd u = fem::interpolate(mesh, fem::makeProblem("wavefront").u);
   return {u.data(), u.data() + u.size()};
 }
-} // namespace
+}  // namespace
 
 TEST(AdaptMetric, HitsTargetComplexityWithAndWithoutGradation) {
   const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);

@@ -31,8 +31,8 @@ TEST(Convergence, VerticesToReachInterpolatesLogLog) {
   std::vector<double> n{10, 100, 1000}, e{10, 1, 0.5};
   EXPECT_NEAR(verticesToReach(n, e, 2.0), 50.0, 1e-9);
   EXPECT_NEAR(verticesToReach(n, e, 1.0), 100.0, 1e-9);
-  EXPECT_NEAR(verticesToReach(n, e, 20.0), 10.0, 0);            // already reached at the first point
-  EXPECT_TRUE(std::isnan(verticesToReach(n, e, 0.1)));          // never reached
+  EXPECT_NEAR(verticesToReach(n, e, 20.0), 10.0, 0);    // already reached at the first point
+  EXPECT_TRUE(std::isnan(verticesToReach(n, e, 0.1)));  // never reached
   // A curve that rises again: the first crossing counts.
   std::vector<double> n2{10, 100, 1000, 10000}, e2{10, 1, 5, 0.1};
   EXPECT_NEAR(verticesToReach(n2, e2, 1.0), 100.0, 1e-9);

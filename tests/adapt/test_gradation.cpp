@@ -23,7 +23,7 @@ double worstViolation(const Mesh2& mesh, const std::vector<Metric2>& m, double h
   }
   return worst;
 }
-} // namespace
+}  // namespace
 
 TEST(Gradation, BoundsSizeGrowthAlongEdges) {
   const Mesh2 mesh = fem::unitSquareMesh(30, 0.15, 2);
@@ -47,9 +47,7 @@ TEST(Gradation, BoundsSizeGrowthAlongEdges) {
   }
   // Anisotropy survives next to the feature: a vertex at x ≈ 0.5 keeps h1/h2 ≈ 50.
   for (int v = 0; v < mesh.numVertices(); ++v) {
-    if (std::abs(mesh.vertices[v].x() - 0.5) < 0.005) {
-      EXPECT_GT(m[v].eigen().h1 / m[v].eigen().h2, 20.0);
-    }
+    if (std::abs(mesh.vertices[v].x() - 0.5) < 0.005) { EXPECT_GT(m[v].eigen().h1 / m[v].eigen().h2, 20.0); }
   }
 }
 

@@ -32,7 +32,7 @@ void expectExactForQuadratic(const Mesh2& mesh, HessianMethod method) {
   for (int v = 0; v < mesh.numVertices(); ++v) worst = std::max(worst, (h[v] - exact).cwiseAbs().maxCoeff());
   EXPECT_LT(worst, 1e-8) << toString(method);
 }
-} // namespace
+}  // namespace
 
 TEST(HessianRecovery, ExactForQuadraticsOnPerturbedSquare) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {

@@ -24,7 +24,7 @@ std::vector<double> nodalValues(const Mesh2& mesh, const fem::ScalarFn& u) {
   for (int v = 0; v < mesh.numVertices(); ++v) out[v] = u(mesh.vertices[v].x(), mesh.vertices[v].y());
   return out;
 }
-} // namespace
+}  // namespace
 
 TEST(InterpolationError, ExactForQuadratics) {
   const fem::ScalarFn u = [](double x, double y) { return 1 + 2 * x - 3 * y + 4 * x * x - 5 * x * y + 6 * y * y; };
@@ -37,7 +37,8 @@ TEST(InterpolationError, ExactForQuadratics) {
     const auto exactHessian = estimateInterpolationError(mesh, std::vector<Hessian2>(mesh.numVertices(), h));
     EXPECT_NEAR(exactHessian.l2 / truth, 1.0, 1e-10) << "seed " << seed;
     ASSERT_EQ(int(exactHessian.elementL2.size()), mesh.numTriangles());
-    const auto recovered = estimateInterpolationError(mesh, recoverHessians(mesh, nodalValues(mesh, u), HessianMethod::LeastSquares));
+    const auto recovered =
+        estimateInterpolationError(mesh, recoverHessians(mesh, nodalValues(mesh, u), HessianMethod::LeastSquares));
     EXPECT_NEAR(recovered.l2 / truth, 1.0, 1e-7) << "seed " << seed;
   }
 }
@@ -47,7 +48,9 @@ TEST(InterpolationError, CloseToTheTruthForSmoothFunctions) {
   // on every level (measured: 0.4–0.5 % at n = 8–32; the cubic terms the estimate ignores are
   // one order higher).
   const fem::ScalarFn u = [](double x, double y) { return std::sin(3 * x) * std::exp(y); };
-  const fem::GradientFn grad = [](double x, double y) { return Vec2(3 * std::cos(3 * x) * std::exp(y), std::sin(3 * x) * std::exp(y)); };
+  const fem::GradientFn grad = [](double x, double y) {
+    return Vec2(3 * std::cos(3 * x) * std::exp(y), std::sin(3 * x) * std::exp(y));
+  };
   for (int n : {8, 16, 32}) {
     const Mesh2 mesh = fem::unitSquareMesh(n, 0.15, 7);
     const double truth = l2InterpOf(mesh, u, grad);

@@ -26,7 +26,7 @@ std::vector<Hessian2> frontHessians(const Mesh2& mesh) {
   }
   return h;
 }
-} // namespace
+}  // namespace
 
 TEST(MetricFromHessian, ComplexityMatchesTarget) {
   const Mesh2 mesh = fem::unitSquareMesh(40, 0.1, 3);
@@ -67,7 +67,7 @@ TEST(MetricFromHessian, ComplexityMatchesTargetWithActiveBounds) {
       hitMax += e.h1 > 0.999 * o.hmax;
       hitAniso += e.h1 / e.h2 > 0.999 * o.maxAnisotropy;
     }
-    EXPECT_GT(hitMax, 0);    // the bounds were active, so the test means something
+    EXPECT_GT(hitMax, 0);  // the bounds were active, so the test means something
     EXPECT_GT(hitAniso, 0);
   }
 }
@@ -95,7 +95,7 @@ Hessian2 rotated(double a, double b, double theta) {  // R diag(a, b) Rᵀ, R th
   r << std::cos(theta), -std::sin(theta), std::sin(theta), std::cos(theta);
   return r * Eigen::Vector2d(a, b).asDiagonal() * r.transpose();
 }
-} // namespace
+}  // namespace
 
 TEST(MetricFromHessian, H1MetricOfAConstantHessian) {
   // Constant H = R diag(−100, 4) Rᵀ: M_{1,2} = D |H|²/√det|H| with D = C / ∫ √det|H| = C/20, so

@@ -39,21 +39,22 @@ std::vector<Metric2> inputMetric(const Mesh2& mesh) {
   return m;
 }
 
-std::vector<Metric2> isotropic(const Mesh2& mesh, double h) { return std::vector<Metric2>(std::size_t(mesh.numVertices()), Metric2::isotropic(h)); }
+std::vector<Metric2> isotropic(const Mesh2& mesh, double h) {
+  return std::vector<Metric2>(std::size_t(mesh.numVertices()), Metric2::isotropic(h));
+}
 
 /// Runs f and returns the InputError's message ("" if nothing or something else was thrown).
-template <class F> std::string inputErrorOf(F f) {
+template <class F>
+std::string inputErrorOf(F f) {
   try {
     f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (...) {
+  } catch (const InputError& e) { return e.what(); } catch (...) {
     return "(not an InputError)";
   }
   return "";
 }
 
-} // namespace
+}  // namespace
 
 TEST(Remesh, OutputIsValidAndCoversTheInputArea) {
   const Mesh2 in = inputMesh();
@@ -75,12 +76,18 @@ TEST(Remesh, BoundaryRefsStayOnTheirSides) {
     const auto is = [](double a, double b) { return std::abs(a - b) <= 1e-12; };
     const auto in = [](double a, double lo, double hi) { return a >= lo - 1e-12 && a <= hi + 1e-12; };
     switch (ref) {
-    case 1: return is(p.y(), 0) && in(p.x(), 0, 4);
-    case 2: return is(p.x(), 4) && in(p.y(), 0, 4);
-    case 3: return is(p.y(), 4) && in(p.x(), 0, 4);
-    case 4: return is(p.x(), 0) && in(p.y(), 0, 4);
-    case 5: return (is(p.x(), 1) || is(p.x(), 2) || is(p.y(), 1) || is(p.y(), 2)) && in(p.x(), 1, 2) && in(p.y(), 1, 2);
-    default: return false;
+      case 1:
+        return is(p.y(), 0) && in(p.x(), 0, 4);
+      case 2:
+        return is(p.x(), 4) && in(p.y(), 0, 4);
+      case 3:
+        return is(p.y(), 4) && in(p.x(), 0, 4);
+      case 4:
+        return is(p.x(), 0) && in(p.y(), 0, 4);
+      case 5:
+        return (is(p.x(), 1) || is(p.x(), 2) || is(p.y(), 1) || is(p.y(), 2)) && in(p.x(), 1, 2) && in(p.y(), 1, 2);
+      default:
+        return false;
     }
   };
   std::set<int> refs;
@@ -88,7 +95,8 @@ TEST(Remesh, BoundaryRefsStayOnTheirSides) {
   for (const auto& e : r.mesh.boundaryEdges) {
     refs.insert(e.ref);
     const Vec2 a = r.mesh.vertices[std::size_t(e.a)], b = r.mesh.vertices[std::size_t(e.b)];
-    EXPECT_TRUE(onSide(e.ref, a) && onSide(e.ref, b)) << "edge (" << a.transpose() << ")-(" << b.transpose() << ") has ref " << e.ref;
+    EXPECT_TRUE(onSide(e.ref, a) && onSide(e.ref, b))
+        << "edge (" << a.transpose() << ")-(" << b.transpose() << ") has ref " << e.ref;
     if (e.ref >= 1 && e.ref <= 5) length[e.ref] += (b - a).norm();
   }
   EXPECT_EQ(refs, (std::set<int>{1, 2, 3, 4, 5}));
@@ -153,10 +161,11 @@ TEST(Remesh, OptionsOutOfRangeAreInputErrorsNamingTheField) {
   EXPECT_NE(message([](RemeshOptions& o) { o.hmin = -1; }).find("hmin"), std::string::npos);
   EXPECT_NE(message([](RemeshOptions& o) { o.hmin = NAN; }).find("hmin"), std::string::npos);
   EXPECT_NE(message([](RemeshOptions& o) { o.hmax = 0; }).find("hmax"), std::string::npos);
-  EXPECT_NE(message([](RemeshOptions& o) { 
-    o.hmin = 0.3;
-    o.hmax = 0.3;
-   }).find("hmax"), std::string::npos);
+  EXPECT_NE(message([](RemeshOptions& o) {
+              o.hmin = 0.3;
+              o.hmax = 0.3;
+            }).find("hmax"),
+            std::string::npos);
   EXPECT_NE(message([](RemeshOptions& o) { o.hgrad = 1; }).find("hgrad"), std::string::npos);
   EXPECT_NE(message([](RemeshOptions& o) { o.hgrad = 0.5; }).find("hgrad"), std::string::npos);
   EXPECT_NE(message([](RemeshOptions& o) { o.hgrad = NAN; }).find("hgrad"), std::string::npos);
@@ -168,7 +177,8 @@ TEST(Remesh, InvalidInputsAreInputErrors) {
   // A non-SPD metric (Metric2::raw skips the checks of fromTensor).
   std::vector<Metric2> m = isotropic(in, 0.2);
   m[5] = Metric2::raw(1, 2, 1);
-  EXPECT_NE(inputErrorOf([&] { remesh(in, m); }).find("metric[5] (1, 2, 1) is not positive definite"), std::string::npos);
+  EXPECT_NE(inputErrorOf([&] { remesh(in, m); }).find("metric[5] (1, 2, 1) is not positive definite"),
+            std::string::npos);
   // A triangle turned clockwise: named as an invalid mesh, under the options' name.
   std::swap(in.triangles[10][1], in.triangles[10][2]);
   RemeshOptions o;
@@ -220,7 +230,8 @@ TEST(Remesh, EqualsTheCompositionTheCommandLineRan) {
   EXPECT_EQ(r.mesh.vertices, expected.mesh.vertices);
   EXPECT_EQ(r.mesh.triangles, expected.mesh.triangles);
   ASSERT_EQ(r.mesh.boundaryEdges.size(), expected.mesh.boundaryEdges.size());
-  for (std::size_t i = 0; i < r.mesh.boundaryEdges.size(); ++i) EXPECT_EQ(r.mesh.boundaryEdges[i].ref, expected.mesh.boundaryEdges[i].ref);
+  for (std::size_t i = 0; i < r.mesh.boundaryEdges.size(); ++i)
+    EXPECT_EQ(r.mesh.boundaryEdges[i].ref, expected.mesh.boundaryEdges[i].ref);
 }
 
 TEST(Remesh, KnownDomainOverloadKeepsTheGivenDomain) {

@@ -18,20 +18,18 @@ BoundaryLoop square(double x0, double y0, double s, bool ccw = true) {
 std::string errorOf(const std::function<void()>& f) {
   try {
     f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
+  } catch (const InputError& e) { return e.what(); }
   return "";
 }
-} // namespace
+}  // namespace
 
 TEST(Domain, AreaWithHoleAndOrientation) {
   const Domain d(square(0, 0, 4, /*ccw=*/false), {square(1, 1, 1, /*ccw=*/true)});
   EXPECT_DOUBLE_EQ(d.area(), 15.0);
   EXPECT_TRUE(d.contains({0.5, 0.5}));
-  EXPECT_FALSE(d.contains({1.5, 1.5}));   // in the hole
-  EXPECT_TRUE(d.contains({1.0, 1.5}));    // on the hole's boundary
-  EXPECT_TRUE(d.contains({4.0, 2.0}));    // on the outer boundary
+  EXPECT_FALSE(d.contains({1.5, 1.5}));  // in the hole
+  EXPECT_TRUE(d.contains({1.0, 1.5}));   // on the hole's boundary
+  EXPECT_TRUE(d.contains({4.0, 2.0}));   // on the outer boundary
   EXPECT_FALSE(d.contains({4.0001, 2.0}));
   EXPECT_NEAR(d.distanceToBoundary({0.5, 2.0}), 0.5, 1e-15);
 }

@@ -22,13 +22,11 @@ Mesh2 squareWithHoleMesh() {
 std::string inputErrorOf(const Mesh2& mesh) {
   try {
     domainFromMeshBoundary(mesh, "m.mesh");
-  } catch (const InputError& e) {
-    return e.what();
-  }
+  } catch (const InputError& e) { return e.what(); }
   return "";
 }
 
-} // namespace
+}  // namespace
 
 TEST(DomainFromMesh, OuterLoopAndHoleWithTheirTagsAndArea) {
   const Mesh2 mesh = squareWithHoleMesh();
@@ -70,6 +68,4 @@ TEST(DomainFromMesh, LoopsTouchingAtAVertexAreRefused) {
   EXPECT_EQ(inputErrorOf(bowtie), "m.mesh: boundary vertex 3 starts two boundary edges (non-manifold boundary)");
 }
 
-TEST(DomainFromMesh, EmptyMeshIsRefused) {
-  EXPECT_EQ(inputErrorOf(Mesh2{}), "m.mesh: mesh has no boundary edges");
-}
+TEST(DomainFromMesh, EmptyMeshIsRefused) { EXPECT_EQ(inputErrorOf(Mesh2{}), "m.mesh: mesh has no boundary edges"); }

@@ -13,7 +13,7 @@ Mesh2 twoTriangles() {
   m.boundaryEdges = {{0, 1, 1}, {1, 2, 2}, {2, 3, 3}, {3, 0, 4}};
   return m;
 }
-} // namespace
+}  // namespace
 
 TEST(Mesh2, ValidMeshPasses) {
   const Mesh2 m = twoTriangles();

@@ -57,9 +57,7 @@ TEST(Metric2, RejectsNonSpdAndNonFinite) {
   try {
     Metric2::fromTensor(1, 2, 1, "nonspd.sol:12: vertex 7");
     FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("nonspd.sol:12"), std::string::npos);
-  }
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("nonspd.sol:12"), std::string::npos); }
 }
 
 TEST(Metric2, LogEuclideanMeanReproducesConstantAndStaysSpd) {
@@ -125,9 +123,7 @@ TEST(Metric2, ExpOfLogIsTheIdentityUpToAnisotropy1e5) {
       const double tol = std::max(1e-9, 1e-15 * ratio * ratio);
       EXPECT_NEAR(b.h1 / a.h1, 1.0, tol) << ratio << " " << theta;
       EXPECT_NEAR(b.h2 / a.h2, 1.0, tol) << ratio << " " << theta;
-      if (ratio > 1.01) {
-        EXPECT_NEAR(std::sin(b.theta - a.theta), 0.0, 1e-9) << ratio << " " << theta;
-      }
+      if (ratio > 1.01) { EXPECT_NEAR(std::sin(b.theta - a.theta), 0.0, 1e-9) << ratio << " " << theta; }
       EXPECT_TRUE(r.isSpd());
     }
   // exp of a diagonal log: the exponentials of the entries.

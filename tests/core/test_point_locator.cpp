@@ -41,7 +41,7 @@ Mesh2 grid(int n, std::uint64_t seed) {
   }
   return m;
 }
-} // namespace
+}  // namespace
 
 TEST(PointLocator, FindsContainingTriangleAndReproducesLinearFunctions) {
   const Mesh2 m = grid(40, 1);
@@ -76,7 +76,8 @@ TEST(PointLocator, WalkAroundAReentrantCornerFromAFarHint) {
   const PointLocator locator(l);
   int hint = -1;
   for (int t = 0; t < l.numTriangles() && hint < 0; ++t) {
-    const Vec2 c = (l.vertices[l.triangles[t][0]] + l.vertices[l.triangles[t][1]] + l.vertices[l.triangles[t][2]]) / 3.0;
+    const Vec2 c =
+        (l.vertices[l.triangles[t][0]] + l.vertices[l.triangles[t][1]] + l.vertices[l.triangles[t][2]]) / 3.0;
     if (c.x() > 0.3 && c.x() < 0.45 && c.y() < 0.15) hint = t;
   }
   ASSERT_GE(hint, 0);
@@ -126,7 +127,8 @@ TEST(BackgroundMetricField, SqrtDeterminantsMatchTheInterpolatedTensor) {
   // raster order and shuffled): exp(½ tr L) against √det of the interpolated tensor.
   const Mesh2 m = grid(12, 5);
   std::vector<Metric2> ms;
-  for (const auto& v : m.vertices) ms.push_back(Metric2::fromSizes(0.2 * std::exp(v.x()), 0.01 + 0.05 * v.y(), 3.0 * v.x() * v.y()));
+  for (const auto& v : m.vertices)
+    ms.push_back(Metric2::fromSizes(0.2 * std::exp(v.x()), 0.01 + 0.05 * v.y(), 3.0 * v.x() * v.y()));
   const BackgroundMetricField field(m, ms);
   std::vector<Vec2> pts;
   for (int j = 0; j < 50; ++j)
@@ -144,7 +146,8 @@ TEST(BackgroundMetricField, SqrtDeterminantsMatchTheInterpolatedTensor) {
 }
 
 TEST(AnalyticMetricField, EvaluatesAndReportsErrors) {
-  AnalyticMetricField f(AnalyticMetricField::Form::Sizes, "0.15*abs(sqrt(x^2+y^2)-6)+0.2", "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0");
+  AnalyticMetricField f(AnalyticMetricField::Form::Sizes, "0.15*abs(sqrt(x^2+y^2)-6)+0.2",
+                        "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0");
   const Metric2 m = f.at({6, 0});
   EXPECT_NEAR(m.eigen().h1, 0.2, 1e-12);
   EXPECT_NEAR(m.eigen().h2, 0.1, 1e-12);

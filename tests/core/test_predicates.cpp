@@ -54,12 +54,12 @@ TEST(Predicates, Orient2dMatchesIntegerArithmetic) {
 }
 
 TEST(Predicates, SegmentsCrossCases) {
-  EXPECT_TRUE(segmentsCross({0, 0}, {1, 1}, {0, 1}, {1, 0}));    // X
-  EXPECT_FALSE(segmentsCross({0, 0}, {1, 1}, {1, 1}, {2, 0}));   // share an endpoint
-  EXPECT_TRUE(segmentsCross({0, 0}, {2, 0}, {1, 0}, {1, 1}));    // T-junction
-  EXPECT_TRUE(segmentsCross({0, 0}, {2, 0}, {1, 0}, {3, 0}));    // collinear overlap
-  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {1, 0}, {2, 0}));   // collinear, touching at an end
-  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {2, 0}, {3, 0}));   // collinear, apart
-  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {0, 1}, {1, 1}));   // parallel
+  EXPECT_TRUE(segmentsCross({0, 0}, {1, 1}, {0, 1}, {1, 0}));   // X
+  EXPECT_FALSE(segmentsCross({0, 0}, {1, 1}, {1, 1}, {2, 0}));  // share an endpoint
+  EXPECT_TRUE(segmentsCross({0, 0}, {2, 0}, {1, 0}, {1, 1}));   // T-junction
+  EXPECT_TRUE(segmentsCross({0, 0}, {2, 0}, {1, 0}, {3, 0}));   // collinear overlap
+  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {1, 0}, {2, 0}));  // collinear, touching at an end
+  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {2, 0}, {3, 0}));  // collinear, apart
+  EXPECT_FALSE(segmentsCross({0, 0}, {1, 0}, {0, 1}, {1, 1}));  // parallel
   EXPECT_TRUE(segmentsIntersect({0, 0}, {1, 1}, {1, 1}, {2, 0}));
 }

@@ -45,7 +45,7 @@ Rates measureRates(const std::string& problem, double perturbation) {
   }
   return {fittedSlope(h, l2), fittedSlope(h, h1)};
 }
-} // namespace
+}  // namespace
 
 TEST(ConvergenceRates, SmoothSolutionUniformMeshes) {
   const Rates r = measureRates("smooth", 0.0);

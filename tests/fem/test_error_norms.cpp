@@ -14,9 +14,9 @@ using namespace ablmg::fem;
 TEST(ErrorNorms, KnownValuesForZeroDiscreteSolution) {
   // u_h = 0, u = x y on the unit square: ‖u‖_L2² = 1/9, |u|_H1² = ∫ y² + x² = 2/3.
   const Mesh2 m = unitSquareMesh(5, 0.2, 3);
-  const ErrorReport e = computeErrors(m, Eigen::VectorXd::Zero(m.numVertices()),
-                                      {[](double x, double y) { return x * y; },
-                                       [](double x, double y) { return Vec2(y, x); }});
+  const ErrorReport e =
+      computeErrors(m, Eigen::VectorXd::Zero(m.numVertices()),
+                    {[](double x, double y) { return x * y; }, [](double x, double y) { return Vec2(y, x); }});
   EXPECT_NEAR(e.l2, std::sqrt(1.0 / 9), 1e-13);
   EXPECT_NEAR(e.h1, std::sqrt(2.0 / 3), 1e-13);
   EXPECT_NEAR(e.maxVertex, 1.0, 1e-15);

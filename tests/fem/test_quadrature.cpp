@@ -13,7 +13,7 @@ namespace {
 double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
 /// ∫_{reference triangle} λ1^a λ2^b dx / |T| = 2 a! b! / (a + b + 2)!
 double exactMonomial(int a, int b) { return 2 * factorial(a) * factorial(b) / factorial(a + b + 2); }
-} // namespace
+}  // namespace
 
 TEST(Quadrature, RulesIntegrateTheirDegreeExactly) {
   for (int request : {1, 2, 3, 4, 5, 6, 7, 8}) {
@@ -30,8 +30,10 @@ TEST(Quadrature, RulesIntegrateTheirDegreeExactly) {
     for (int a = 0; a <= r.degree; ++a)
       for (int b = 0; a + b <= r.degree; ++b) {
         double s = 0;
-        for (int q = 0; q < r.size(); ++q) s += r.weights[q] * std::pow(r.points[q][1], a) * std::pow(r.points[q][2], b);
-        EXPECT_NEAR(s, exactMonomial(a, b), 1e-13) << "rule of degree " << r.degree << ", monomial x^" << a << " y^" << b;
+        for (int q = 0; q < r.size(); ++q)
+          s += r.weights[q] * std::pow(r.points[q][1], a) * std::pow(r.points[q][2], b);
+        EXPECT_NEAR(s, exactMonomial(a, b), 1e-13)
+            << "rule of degree " << r.degree << ", monomial x^" << a << " y^" << b;
       }
   }
 }
@@ -44,7 +46,8 @@ TEST(Quadrature, RulesAreNotExactBeyondTheirDegree) {
     const int d = r.degree + 1;
     for (int a = 0; a <= d; ++a) {
       double s = 0;
-      for (int q = 0; q < r.size(); ++q) s += r.weights[q] * std::pow(r.points[q][1], a) * std::pow(r.points[q][2], d - a);
+      for (int q = 0; q < r.size(); ++q)
+        s += r.weights[q] * std::pow(r.points[q][1], a) * std::pow(r.points[q][2], d - a);
       worst = std::max(worst, std::abs(s - exactMonomial(a, d - a)));
     }
     EXPECT_GT(worst, 1e-8) << "degree " << r.degree;

@@ -18,10 +18,11 @@ double linearU(double x, double y) { return 1 + 2 * x - 3 * y; }
 
 double maxNodalError(const Mesh2& m, const Eigen::VectorXd& u, const ScalarFn& exact) {
   double e = 0;
-  for (int v = 0; v < m.numVertices(); ++v) e = std::max(e, std::abs(u[v] - exact(m.vertices[v].x(), m.vertices[v].y())));
+  for (int v = 0; v < m.numVertices(); ++v)
+    e = std::max(e, std::abs(u[v] - exact(m.vertices[v].x(), m.vertices[v].y())));
   return e;
 }
-} // namespace
+}  // namespace
 
 TEST(Solve, PatchTestLinearSolutionOnUnstructuredMesh) {
   const Mesh2 m = unitSquareMesh(13, 0.2, 42);
@@ -84,18 +85,14 @@ TEST(Solve, SingularOrNonSpdSystemsAreInputErrors) {
   try {
     solvePoisson(m, neumannOnly);
     FAIL() << "pure Neumann problem accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
-  }
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what(); }
   PoissonProblem negative;
   negative.kappa = -1.0;
   negative.setDirichletEverywhere(0.0);
   try {
     solvePoisson(m, negative);
     FAIL() << "negative kappa accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("kappa"), std::string::npos) << e.what();
-  }
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("kappa"), std::string::npos) << e.what(); }
   PoissonProblem signChange;
   signChange.kappa = ScalarFn([](double x, double) { return x - 0.5; });
   signChange.setDirichletEverywhere(0.0);

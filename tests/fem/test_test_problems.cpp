@@ -55,9 +55,7 @@ TEST(TestProblems, BadNamesAndParametersAreInputErrorsListingTheValidOnes) {
   try {
     makeProblem("wavefrnt");
     FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("wavefront"), std::string::npos) << e.what();
-  }
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("wavefront"), std::string::npos) << e.what(); }
   try {
     makeProblem("wavefront", {{"eps", 1}});
     FAIL();

@@ -30,17 +30,19 @@ TEST(AtomicFile, FailedWriterLeavesOldFileIntact) {
   const std::string p = (dir / "out.txt").string();
   io::writeFileAtomically(p, [](std::ostream& os) { os << "old content\n"; });
   EXPECT_EQ(slurp(p), "old content\n");
-  EXPECT_THROW(io::writeFileAtomically(p, [](std::ostream& os) {
-                 os << "half of the new";
-                 throw std::runtime_error("killed mid-way");
-               }),
+  EXPECT_THROW(io::writeFileAtomically(p,
+                                       [](std::ostream& os) {
+                                         os << "half of the new";
+                                         throw std::runtime_error("killed mid-way");
+                                       }),
                std::runtime_error);
   EXPECT_EQ(slurp(p), "old content\n");
   EXPECT_EQ(filesIn(dir), 1);  // no temporary left behind
-  EXPECT_THROW(io::writePathAtomically(p, [](const std::string& tmp) {
-                 std::ofstream(tmp) << "partial";
-                 throw std::runtime_error("VTK failed");
-               }),
+  EXPECT_THROW(io::writePathAtomically(p,
+                                       [](const std::string& tmp) {
+                                         std::ofstream(tmp) << "partial";
+                                         throw std::runtime_error("VTK failed");
+                                       }),
                std::runtime_error);
   EXPECT_EQ(slurp(p), "old content\n");
   EXPECT_EQ(filesIn(dir), 1);

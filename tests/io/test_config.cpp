@@ -12,9 +12,7 @@ static const std::string kData = ABLMG_TEST_DATA;
 static std::string errorOf(const std::string& json) {
   try {
     cli::parseConfig(json, "config.json", kData);
-  } catch (const InputError& e) {
-    return e.what();
-  }
+  } catch (const InputError& e) { return e.what(); }
   return "(no error)";
 }
 
@@ -39,13 +37,18 @@ TEST(Config, RectangleWithAnalyticSizesAndOptions) {
 }
 
 TEST(Config, DiskLoopsPolyAndBackgroundMetric) {
-  auto disk = cli::parseConfig(R"({"domain": {"disk": {"center": [1, 2], "radius": 3, "samples": 64}}, "metric": {"h": "0.2"}})", "c", "");
+  auto disk = cli::parseConfig(
+      R"({"domain": {"disk": {"center": [1, 2], "radius": 3, "samples": 64}}, "metric": {"h": "0.2"}})", "c", "");
   EXPECT_NEAR(disk.domain.area(), 0.5 * 64 * 9 * std::sin(2 * M_PI / 64), 1e-9);
-  auto loops = cli::parseConfig(R"({"domain": {"loops": [[[0,0],[4,0],[4,4],[0,4]], [[1,1],[1,2],[2,2],[2,1]]], "tags": [1, [5,5,5,5]]},
-                                   "metric": {"m11": "100", "m12": "0", "m22": "400"}})", "c", "");
+  auto loops = cli::parseConfig(
+      R"({"domain": {"loops": [[[0,0],[4,0],[4,4],[0,4]], [[1,1],[1,2],[2,2],[2,1]]], "tags": [1, [5,5,5,5]]},
+                                   "metric": {"m11": "100", "m12": "0", "m22": "400"}})",
+      "c", "");
   EXPECT_NEAR(loops.domain.area(), 15.0, 1e-14);
   EXPECT_NEAR(loops.metric->at(Vec2(0, 0)).eigen().h2, 0.05, 1e-15);
-  auto poly = cli::parseConfig(R"({"domain": {"poly": "square_hole.poly"}, "metric": {"mesh": "square.mesh", "sol": "square.sol"}})", "c", kData);
+  auto poly = cli::parseConfig(
+      R"({"domain": {"poly": "square_hole.poly"}, "metric": {"mesh": "square.mesh", "sol": "square.sol"}})", "c",
+      kData);
   EXPECT_NEAR(poly.domain.area(), 15.0, 1e-14);
   EXPECT_NEAR(poly.metric->at(Vec2(1, 1)).m11(), 400, 1e-9);  // vertex 3 of square.mesh
 }
@@ -71,7 +74,8 @@ TEST(Config, SmoothLoops) {
 
 TEST(Config, SmoothPolyLoops) {
   const auto poly = [&](const std::string& smooth) {
-    return cli::parseConfig(R"({"domain": {"poly": "square_hole.poly")" + smooth + R"(}, "metric": {"h": "0.2"}})", "c", kData);
+    return cli::parseConfig(R"({"domain": {"poly": "square_hole.poly")" + smooth + R"(}, "metric": {"h": "0.2"}})", "c",
+                            kData);
   };
   const auto plain = poly("");
   for (const auto& l : plain.domain.loops()) EXPECT_FALSE(l.smooth);
@@ -85,25 +89,34 @@ TEST(Config, SmoothPolyLoops) {
     poly(R"(, "smooth": [true, true, true])");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("c: domain.smooth: expected boolean or one boolean per loop"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("c: domain.smooth: expected boolean or one boolean per loop"),
+              std::string::npos)
+        << e.what();
   }
 }
 
 TEST(Config, ErrorsNameTheKeyPath) {
-  EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": 0.1}})"), "config.json: metric.h1: expected string, got number");
-  EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "colour": 1})").find("config.json: colour: unknown key"),
+  EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": 0.1}})"),
+            "config.json: metric.h1: expected string, got number");
+  EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "colour": 1})")
+                .find("config.json: colour: unknown key"),
             std::string::npos);
-  EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "options": {"placement": {"sed": 1}}})")
-                .find("config.json: options.placement.sed: unknown key"),
-            std::string::npos);
-  EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "options": {"placement": {"maxSteps": 1.5}}})"),
-            "config.json: options.placement.maxSteps: expected integer, got number");
+  EXPECT_NE(
+      errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "options": {"placement": {"sed": 1}}})")
+          .find("config.json: options.placement.sed: unknown key"),
+      std::string::npos);
+  EXPECT_EQ(
+      errorOf(
+          R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1"}, "options": {"placement": {"maxSteps": 1.5}}})"),
+      "config.json: options.placement.maxSteps: expected integer, got number");
   EXPECT_EQ(errorOf(R"({"domain": {"rectangle": [0,0,1,"a"]}, "metric": {"h1": "0.1"}})"),
             "config.json: domain.rectangle[3]: expected number, got string");
   EXPECT_EQ(errorOf(R"({"domain": {"disk": {"center": [0,0], "radius": -1}}, "metric": {"h1": "0.1"}})"),
             "config.json: domain.disk.radius: must be > 0, got -1");
   EXPECT_NE(errorOf(R"({"metric": {"h1": "0.1"}})").find("config.json: domain: missing"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1 +* x"}})").find("config.json: metric"), std::string::npos);
+  EXPECT_NE(
+      errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"h1": "0.1 +* x"}})").find("config.json: metric"),
+      std::string::npos);
   EXPECT_NE(errorOf(R"({"domain": {"rectangle": [0,0,1,1]}, "metric": {"mesh": "square.mesh", "sol": "mismatch.sol"}})")
                 .find("3 solution values but the mesh has 5 vertices"),
             std::string::npos);

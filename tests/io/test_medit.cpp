@@ -30,7 +30,8 @@ static void expectInputError(F f, std::initializer_list<std::string> needles) {
     f();
     FAIL() << "no exception";
   } catch (const InputError& e) {
-    for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
+    for (const auto& n : needles)
+      EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what() << " lacks " << n;
   }
 }
 
@@ -57,7 +58,7 @@ TEST(Medit, ReadsMmgStyleMeshSkippingUnknownSections) {
 TEST(Medit, MeshRoundTripIsExact) {
   Mesh2 m = io::readMesh(kData + "/square.mesh");
   m.vertices[4] = Vec2(0.1 + 1e-13, 1.0 / 3.0);  // 17 and 16 significant digits to survive
-  m.vertices[0] = Vec2(-2.5e17, 4.9e-324);         // huge and subnormal: shortest forms read back exactly
+  m.vertices[0] = Vec2(-2.5e17, 4.9e-324);       // huge and subnormal: shortest forms read back exactly
   m.vertices[1] = Vec2(std::nextafter(1.0, 2.0), -0.0);
   m.vertexRefs[3] = -2147483647 - 1;
   const auto p = tmpPath("rt.mesh");
@@ -79,8 +80,9 @@ TEST(Medit, MeshRoundTripIsExact) {
 }
 
 TEST(Medit, TensorSolRoundTripIsExact) {
-  std::vector<Metric2> ms = {Metric2::fromSizes(0.1, 0.01, 0.3), Metric2::fromSizes(1, 1, 0), Metric2::fromTensor(3, -1.25, 7),
-                             Metric2::fromTensor(2.5e7, -0.0, 1.0 / 3.0), Metric2::fromTensor(0.1, 1e-300, 0.2)};
+  std::vector<Metric2> ms = {Metric2::fromSizes(0.1, 0.01, 0.3), Metric2::fromSizes(1, 1, 0),
+                             Metric2::fromTensor(3, -1.25, 7), Metric2::fromTensor(2.5e7, -0.0, 1.0 / 3.0),
+                             Metric2::fromTensor(0.1, 1e-300, 0.2)};
   const auto p = tmpPath("rt.sol");
   io::writeSol(p, ms);
   const auto r = io::readSol(p, int(ms.size()));
@@ -96,8 +98,17 @@ TEST(Medit, TensorSolRoundTripIsExact) {
 TEST(Medit, RandomDoublesRoundTripBitForBit) {
   // Awkward values, then random bit patterns (every exponent, subnormals included): the
   // shortest form written by to_chars reads back to the same bits.
-  const double awkward[] = {0.1, 1e-300, -2.5e17, 1.0 / 3.0, -0.0, 4.9e-324, std::numeric_limits<double>::max(),
-                            -std::numeric_limits<double>::min(), 123456789012345680.0, 5e-324, 0.30000000000000004};
+  const double awkward[] = {0.1,
+                            1e-300,
+                            -2.5e17,
+                            1.0 / 3.0,
+                            -0.0,
+                            4.9e-324,
+                            std::numeric_limits<double>::max(),
+                            -std::numeric_limits<double>::min(),
+                            123456789012345680.0,
+                            5e-324,
+                            0.30000000000000004};
   std::mt19937_64 rng(11);
   Mesh2 m = io::readMesh(kData + "/square.mesh");
   m.triangles.clear();  // vertices only: random coordinates would make the reader reorient triangles
@@ -108,18 +119,23 @@ TEST(Medit, RandomDoublesRoundTripBitForBit) {
       double xy[2];
       for (int k = 0; k < 2; ++k) {
         const std::size_t slot = 2 * (std::size_t(round) * m.vertices.size() + i) + std::size_t(k);
-        if (slot < std::size(awkward)) xy[k] = awkward[slot];
-        else do xy[k] = std::bit_cast<double>(rng()); while (!std::isfinite(xy[k]));
+        if (slot < std::size(awkward))
+          xy[k] = awkward[slot];
+        else
+          do xy[k] = std::bit_cast<double>(rng());
+          while (!std::isfinite(xy[k]));
       }
       m.vertices[i] = Vec2(xy[0], xy[1]);
     }
-    const Mesh2 r = io::parseMesh([&] {
-      const auto p = tmpPath("random.mesh");
-      io::writeMesh(p, m);
-      const std::string text = fileText(p);
-      std::filesystem::remove(p);
-      return text;
-    }(), "random.mesh");
+    const Mesh2 r = io::parseMesh(
+        [&] {
+          const auto p = tmpPath("random.mesh");
+          io::writeMesh(p, m);
+          const std::string text = fileText(p);
+          std::filesystem::remove(p);
+          return text;
+        }(),
+        "random.mesh");
     for (int i = 0; i < m.numVertices(); ++i)
       ASSERT_TRUE(sameBits(r.vertices[i].x(), m.vertices[i].x()) && sameBits(r.vertices[i].y(), m.vertices[i].y()))
           << std::hexfloat << m.vertices[i].x() << " " << m.vertices[i].y();
@@ -137,8 +153,9 @@ TEST(Medit, WritesTheMeditLayout) {
   m.boundaryEdges = {{0, 1, 5}};
   const auto p = tmpPath("layout.mesh");
   io::writeMesh(p, m);
-  EXPECT_EQ(fileText(p), "MeshVersionFormatted 2\n\nDimension 2\n\nVertices\n3\n0 0 1\n0.1 -2.5e-07 0\n0.3333333333333333 1e+22 7\n"
-                         "\nEdges\n1\n1 2 5\n\nTriangles\n1\n1 2 3 3\n\nEnd\n");
+  EXPECT_EQ(fileText(p),
+            "MeshVersionFormatted 2\n\nDimension 2\n\nVertices\n3\n0 0 1\n0.1 -2.5e-07 0\n0.3333333333333333 1e+22 7\n"
+            "\nEdges\n1\n1 2 5\n\nTriangles\n1\n1 2 3 3\n\nEnd\n");
   std::filesystem::remove(p);
   io::writeSol(p, std::vector<Metric2>{Metric2::fromTensor(4, 0.5, 1.5e-3 + 0.1)});
   EXPECT_EQ(fileText(p), "MeshVersionFormatted 2\n\nDimension 2\n\nSolAtVertices\n1\n1 3\n\n4 0.5 0.1015\n\nEnd\n");
@@ -150,7 +167,8 @@ TEST(Medit, WritesTheMeditLayout) {
 TEST(Medit, WriteMeshAndSolWritesWhatTheSingleWritersWrite) {
   const Mesh2 m = io::readMesh(kData + "/square.mesh");
   const auto metrics = io::readSol(kData + "/square.sol", m.numVertices());
-  const auto pm = tmpPath("pair.mesh"), ps = tmpPath("pair.sol"), qm = tmpPath("single.mesh"), qs = tmpPath("single.sol");
+  const auto pm = tmpPath("pair.mesh"), ps = tmpPath("pair.sol"), qm = tmpPath("single.mesh"),
+             qs = tmpPath("single.sol");
   io::writeMeshAndSol(pm, m, ps, metrics);
   io::writeMesh(qm, m);
   io::writeSol(qs, metrics);
@@ -172,9 +190,10 @@ TEST(Medit, WriteMeshAndSolLeavesNoMeshWhenTheSolFails) {
 TEST(Medit, NumbersInEveryStrtodFormReadTheSame) {
   // The fast from_chars path and the strtod fallback must agree: '+' signs, exponents, a
   // leading '.', an underflow to a subnormal, an int written "+3".
-  const std::string text = "MeshVersionFormatted 2\nDimension 2\nVertices\n+3\n"
-                           "+1.5 .25 +1\n1e-310 -2E+3 0\n0.1 1.0 2\n"
-                           "Triangles\n1\n1 2 3 0\nEnd\n";
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n+3\n"
+      "+1.5 .25 +1\n1e-310 -2E+3 0\n0.1 1.0 2\n"
+      "Triangles\n1\n1 2 3 0\nEnd\n";
   const auto p = tmpPath("forms.mesh");
   {
     std::ofstream os(p);
@@ -194,10 +213,13 @@ TEST(Medit, FastNumberPathKeepsTheMessages) {
   // A number of more than 400 characters is refused, however valid.
   expectInputError([&] { io::parseMesh(head + "0." + std::string(400, '0') + "1 0 0\nEnd\n", "long.mesh"); },
                    {"long.mesh:5:", "expected vertex x coordinate (a number)"});
-  expectInputError([&] { io::parseMesh(head + "1e400 0 0\nEnd\n", "big.mesh"); }, {"big.mesh:5:", "vertex x coordinate is not finite: '1e400'"});
-  expectInputError([&] { io::parseMesh(head + "inf 0 0\nEnd\n", "inf.mesh"); }, {"inf.mesh:5:", "is not finite: 'inf'"});
+  expectInputError([&] { io::parseMesh(head + "1e400 0 0\nEnd\n", "big.mesh"); },
+                   {"big.mesh:5:", "vertex x coordinate is not finite: '1e400'"});
+  expectInputError([&] { io::parseMesh(head + "inf 0 0\nEnd\n", "inf.mesh"); },
+                   {"inf.mesh:5:", "is not finite: 'inf'"});
   expectInputError([&] { io::parseMesh(head + "1.5x 0 0\nEnd\n", "x.mesh"); }, {"x.mesh:5:", "got '1.5x'"});
-  expectInputError([&] { io::parseMesh(head + "0 0 0x10\nEnd\n", "hex.mesh"); }, {"hex.mesh:5:", "(an integer), got '0x10'"});
+  expectInputError([&] { io::parseMesh(head + "0 0 0x10\nEnd\n", "hex.mesh"); },
+                   {"hex.mesh:5:", "(an integer), got '0x10'"});
   expectInputError([&] { io::parseMesh(head + "0 0 99999999999\nEnd\n", "ref.mesh"); },
                    {"ref.mesh:5:", "vertex reference 99999999999 is out of range"});
   expectInputError([&] { io::parseMesh(head + "0 0\n\n", "eof.mesh"); }, {"eof.mesh:5:", "unexpected end of file"});
@@ -253,7 +275,9 @@ TEST(Medit, ReadsGmshPlanarDimension3) {
 }
 
 TEST(Medit, KeywordsCaseInsensitiveAndComments) {
-  const Mesh2 m = io::parseMesh("meshversionformatted 2 # c\ndimension 2\nVERTICES 3\n0 0 0\n1 0 0\n0 1 0 # v3\ntriangles 1 1 2 3 4\nend\n", "x.mesh");
+  const Mesh2 m = io::parseMesh(
+      "meshversionformatted 2 # c\ndimension 2\nVERTICES 3\n0 0 0\n1 0 0\n0 1 0 # v3\ntriangles 1 1 2 3 4\nend\n",
+      "x.mesh");
   EXPECT_EQ(m.numTriangles(), 1);
   EXPECT_EQ(m.triangleRefs[0], 4);
 }
@@ -261,35 +285,43 @@ TEST(Medit, KeywordsCaseInsensitiveAndComments) {
 TEST(Medit, BadFilesNameFileAndLine) {
   expectInputError([] { io::readMesh(kData + "/truncated.mesh"); }, {"truncated.mesh:7:", "unexpected end of file"});
   expectInputError([] { io::readMesh(kData + "/nan.mesh"); }, {"nan.mesh:7:", "not finite"});
-  expectInputError([] { io::readMesh(kData + "/bad_index.mesh"); }, {"bad_index.mesh:10:", "vertex index 7 out of range [1, 3]"});
+  expectInputError([] { io::readMesh(kData + "/bad_index.mesh"); },
+                   {"bad_index.mesh:10:", "vertex index 7 out of range [1, 3]"});
   expectInputError([] { io::readMesh(kData + "/empty.mesh"); }, {"empty.mesh:1:", "empty file"});
   expectInputError([] { io::readMesh(kData + "/garbage.mesh"); }, {"garbage.mesh:5:"});
   expectInputError([] { io::readMesh(kData + "/does-not-exist.mesh"); }, {"does-not-exist.mesh", "cannot open"});
   expectInputError([] { io::readSol(kData + "/nonspd.sol", 5); },
                    {"nonspd.sol:13: tensor of vertex 5 (1, 2, 1) is not positive definite"});
-  expectInputError([] { io::readSol(kData + "/negative-size.sol", 5); }, {"negative-size.sol:8:", "size of vertex 3 is -0.2"});
-  expectInputError([] { io::readSol(kData + "/mismatch.sol", 5); }, {"mismatch.sol:4:", "3 solution values but the mesh has 5 vertices"});
+  expectInputError([] { io::readSol(kData + "/negative-size.sol", 5); },
+                   {"negative-size.sol:8:", "size of vertex 3 is -0.2"});
+  expectInputError([] { io::readSol(kData + "/mismatch.sol", 5); },
+                   {"mismatch.sol:4:", "3 solution values but the mesh has 5 vertices"});
   expectInputError([] { io::readSol(kData + "/square.mesh"); }, {"square.mesh", "no SolAtVertices"});
 }
 
 TEST(Medit, HugeCountDoesNotAllocate) {
-  expectInputError([] { io::parseMesh("MeshVersionFormatted 2\nDimension 2\nVertices\n2000000000\n0 0 0\n", "huge.mesh"); },
-                   {"huge.mesh:4:", "more than the file can hold"});
+  expectInputError(
+      [] { io::parseMesh("MeshVersionFormatted 2\nDimension 2\nVertices\n2000000000\n0 0 0\n", "huge.mesh"); },
+      {"huge.mesh:4:", "more than the file can hold"});
 }
 
 TEST(Medit, ScalarSizeWithoutARepresentableTensorNamesTheLine) {
   // 1/h² overflows (h = 1e-200) or h² does (h = 1e200): no SPD tensor. The error used to be
   // Metric2's "metric: sizes (...) give a tensor that is not numerically SPD", with no file:line.
   for (const char* h : {"1e-200", "1e200"})
-    expectInputError([h] { io::parseSol(std::string("MeshVersionFormatted 2\nSolAtVertices\n2\n1 1\n0.5\n") + h + "\nEnd\n", "tiny.sol"); },
-                     {"tiny.sol:6: size of vertex 2 is", "not representable"});
+    expectInputError(
+        [h] {
+          io::parseSol(std::string("MeshVersionFormatted 2\nSolAtVertices\n2\n1 1\n0.5\n") + h + "\nEnd\n", "tiny.sol");
+        },
+        {"tiny.sol:6: size of vertex 2 is", "not representable"});
 }
 
 // Fuzz-like: every prefix and random byte corruptions of valid files either parse or throw
 // InputError (never crash, never another exception type).
 TEST(Medit, TruncatedAndGarbledInputsOnlyThrowInputError) {
-  const std::string mesh = "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
-                           "Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nTriangles\n4\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\nEnd\n";
+  const std::string mesh =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
+      "Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nTriangles\n4\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\nEnd\n";
   const std::string sol = "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n3\n1 3\n1 0 1\n2 0.5 3\n4 0 4\nEnd\n";
   std::mt19937_64 rng(7);
   long parsed = 0, rejected = 0;
@@ -304,7 +336,10 @@ TEST(Medit, TruncatedAndGarbledInputsOnlyThrowInputError) {
     }
     for (const auto& in : inputs) {
       try {
-        if (isMesh) io::parseMesh(in, "f.mesh"); else io::parseSol(in, "f.sol");
+        if (isMesh)
+          io::parseMesh(in, "f.mesh");
+        else
+          io::parseSol(in, "f.sol");
         ++parsed;
       } catch (const InputError& e) {
         ++rejected;
@@ -333,13 +368,17 @@ TEST(Medit, ReadsRealFreeFemOutput) {
   EXPECT_EQ(m.boundaryEdges[3].ref, 2);
   const auto v = m.validate(2.0);
   EXPECT_TRUE(v.ok) << v.firstProblem;
-  EXPECT_THROW(io::parseMesh("MeshVersionFormatted 1\nDimension 2\nIdentifier\n\"never closed\n", "q.mesh"), InputError);
+  EXPECT_THROW(io::parseMesh("MeshVersionFormatted 1\nDimension 2\nIdentifier\n\"never closed\n", "q.mesh"),
+               InputError);
 }
 
 TEST(Medit, Dimension3PlanarTensorSol) {
-  const auto r = io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0 9 0 1\nEnd\n", "d3.sol");
+  const auto r =
+      io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0 9 0 1\nEnd\n", "d3.sol");
   EXPECT_EQ(r[0].m11(), 4);
   EXPECT_EQ(r[0].m12(), 1);
   EXPECT_EQ(r[0].m22(), 9);
-  EXPECT_THROW(io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0.5 9 0 1\nEnd\n", "d3.sol"), InputError);
+  EXPECT_THROW(
+      io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0.5 9 0 1\nEnd\n", "d3.sol"),
+      InputError);
 }

@@ -11,7 +11,8 @@
 using namespace ablmg;
 
 TEST(MeditSurface, RoundTripOfWriteSurfaceMesh) {
-  const auto p = (std::filesystem::temp_directory_path() / ("ablmg_surf_" + std::to_string(::getpid()) + ".mesh")).string();
+  const auto p =
+      (std::filesystem::temp_directory_path() / ("ablmg_surf_" + std::to_string(::getpid()) + ".mesh")).string();
   const std::vector<Eigen::Vector3d> v{{0, 0, 0}, {1, 0, 0.1}, {0, 1, 1.0 / 3}};
   io::writeSurfaceMesh(p, v, {{0, 2, 1}}, {7});
   const io::SurfaceMeshFile f = io::readSurfaceMesh(p);
@@ -32,7 +33,5 @@ TEST(MeditSurface, PlanarFileHasZeroZAndErrorsNameTheLine) {
   try {
     io::parseSurfaceMesh("MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 nan 1\nEnd\n", "bad.mesh");
     FAIL() << "no exception";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.mesh:5:"), std::string::npos) << e.what();
-  }
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("bad.mesh:5:"), std::string::npos) << e.what(); }
 }

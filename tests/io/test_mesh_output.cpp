@@ -24,14 +24,16 @@ TEST(MeshOutput, VtuCarriesQualityAndEdgeLengths) {
   // the half-diagonals (√2/2), a corner has two sides (1) and one half-diagonal.
   const Mesh2 m = io::readMesh(std::string(ABLMG_TEST_DATA) + "/square.mesh");
   const std::vector<Metric2> identity(5, Metric2::isotropic(1.0));
-  const std::string p = (std::filesystem::temp_directory_path() / ("ablmg_mo_" + std::to_string(::getpid()) + ".vtu")).string();
+  const std::string p =
+      (std::filesystem::temp_directory_path() / ("ablmg_mo_" + std::to_string(::getpid()) + ".vtu")).string();
   cli::writeMeshOutput(p, Domain::rectangle(0, 0, 1, 1), m, identity);
   vtkNew<vtkXMLUnstructuredGridReader> r;
   r->SetFileName(p.c_str());
   r->Update();
   vtkUnstructuredGrid* g = r->GetOutput();
   ASSERT_NE(g->GetCellData()->GetArray("quality"), nullptr);
-  for (int t = 0; t < 4; ++t) EXPECT_NEAR(g->GetCellData()->GetArray("quality")->GetComponent(t, 0), std::sqrt(3.0) / 2, 1e-12);
+  for (int t = 0; t < 4; ++t)
+    EXPECT_NEAR(g->GetCellData()->GetArray("quality")->GetComponent(t, 0), std::sqrt(3.0) / 2, 1e-12);
   EXPECT_NEAR(g->GetPointData()->GetArray("edge_length_min")->GetComponent(4, 0), std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(g->GetPointData()->GetArray("edge_length_max")->GetComponent(4, 0), std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(g->GetPointData()->GetArray("edge_length_min")->GetComponent(0, 0), std::sqrt(0.5), 1e-12);

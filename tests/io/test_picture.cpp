@@ -31,7 +31,7 @@ struct Png {
 std::string tmp(const std::string& n) {
   return (std::filesystem::temp_directory_path() / ("ablmg_pic_" + std::to_string(::getpid()) + n)).string();
 }
-} // namespace
+}  // namespace
 
 TEST(Picture, MeshColouredByValue) {
   const Mesh2 m = io::readMesh(std::string(ABLMG_TEST_DATA) + "/square.mesh");
@@ -74,7 +74,8 @@ TEST(Picture, BubblesAreHalfUnitEllipses) {
 
 TEST(Picture, LogLogPlotWritesPng) {
   const auto p = tmp("plot.png");
-  io::drawLogLogPlot(p, {{"L2", {100, 1000, 10000}, {1e-2, 1e-3, 1e-4}}, {"H1", {100, 1000, 10000}, {1e-1, 3e-2, 1e-2}}},
+  io::drawLogLogPlot(p,
+                     {{"L2", {100, 1000, 10000}, {1e-2, 1e-3, 1e-4}}, {"H1", {100, 1000, 10000}, {1e-1, 3e-2, 1e-2}}},
                      {-1, -0.5}, "N", "error", "convergence");
   Png png(p);
   ASSERT_TRUE(png.ok());

@@ -39,11 +39,15 @@ TEST(Poly, ErrorsNameTheProblem) {
     io::parsePoly("3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n3 0\n1 1 2\n2 2 9\n3 3 1\n0\n", "bad.poly");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.poly:7: segment 2: endpoint 9 out of range [1, 3]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bad.poly:7: segment 2: endpoint 9 out of range [1, 3]"), std::string::npos)
+        << e.what();
   }
   // Inner loop with no hole point.
-  EXPECT_THROW(io::parsePoly("6 2 0 0\n1 0 0\n2 4 0\n3 0 4\n4 1 1\n5 2 1\n6 1 2\n6 0\n1 1 2\n2 2 3\n3 3 1\n4 4 5\n5 5 6\n6 6 4\n0\n", "x.poly"),
-               InputError);
+  EXPECT_THROW(
+      io::parsePoly(
+          "6 2 0 0\n1 0 0\n2 4 0\n3 0 4\n4 1 1\n5 2 1\n6 1 2\n6 0\n1 1 2\n2 2 3\n3 3 1\n4 4 5\n5 5 6\n6 6 4\n0\n",
+          "x.poly"),
+      InputError);
   EXPECT_THROW(io::parsePoly("", "empty.poly"), InputError);
   EXPECT_THROW(io::parsePoly("3 2 0 0\n1 0 0\n2 1 0\n", "trunc.poly"), InputError);
 }

@@ -11,9 +11,7 @@ using namespace ablmg;
 static std::string errorOf(const std::string& text) {
   try {
     cli::problemFromJson(nlohmann::json::parse(text), "fuzz.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
+  } catch (const InputError& e) { return e.what(); }
   return "(no error)";
 }
 
@@ -27,7 +25,8 @@ TEST(ProblemConfig, ExpressionsEvaluateAndNamedProblemsHaveTheirDomain) {
   EXPECT_DOUBLE_EQ(s.problem.neumann.at(3).fn(0, 0.25), 0.25);
   EXPECT_DOUBLE_EQ(s.exact.grad(1.5, 0).x(), 3);
   EXPECT_FALSE(s.domain);
-  const auto w = cli::problemFromJson(nlohmann::json::parse(R"({"problem": "wavefront", "params": {"alpha": 20}})"), "c.json");
+  const auto w =
+      cli::problemFromJson(nlohmann::json::parse(R"({"problem": "wavefront", "params": {"alpha": 20}})"), "c.json");
   ASSERT_TRUE(w.domain);
   EXPECT_NEAR(w.domain->area(), 1.0, 1e-15);
 }
@@ -35,11 +34,16 @@ TEST(ProblemConfig, ExpressionsEvaluateAndNamedProblemsHaveTheirDomain) {
 TEST(ProblemConfig, LibraryProblemErrorsNameTheFile) {
   // Found by fuzz_problem (the exact input): the library's "unknown problem" and parameter
   // errors came without the config file's name, unlike every other error of the config.
-  EXPECT_EQ(errorOf(R"({"problem": "sin-ee", "s": {"ala": 10}})").rfind("fuzz.json: unknown problem 'sin-ee' (valid: ", 0), 0u)
+  EXPECT_EQ(
+      errorOf(R"({"problem": "sin-ee", "s": {"ala": 10}})").rfind("fuzz.json: unknown problem 'sin-ee' (valid: ", 0),
+      0u)
       << errorOf(R"({"problem": "sin-ee", "s": {"ala": 10}})");
-  EXPECT_EQ(errorOf(R"({"problem": "peak", "params": {"beta": 1}})").rfind("fuzz.json: problem 'peak': unknown parameter 'beta'", 0), 0u)
+  EXPECT_EQ(errorOf(R"({"problem": "peak", "params": {"beta": 1}})")
+                .rfind("fuzz.json: problem 'peak': unknown parameter 'beta'", 0),
+            0u)
       << errorOf(R"({"problem": "peak", "params": {"beta": 1}})");
-  EXPECT_EQ(errorOf(R"({"problem": "peak", "params": {"alpha": -1}})").rfind("fuzz.json: problem 'peak': alpha = -1", 0), 0u)
+  EXPECT_EQ(
+      errorOf(R"({"problem": "peak", "params": {"alpha": -1}})").rfind("fuzz.json: problem 'peak': alpha = -1", 0), 0u)
       << errorOf(R"({"problem": "peak", "params": {"alpha": -1}})");
   EXPECT_EQ(errorOf(R"({"problem": {"f": "sin("}})").rfind("fuzz.json: problem.f: bad expression 'sin('", 0), 0u);
 }

@@ -32,7 +32,7 @@ struct Png {
 std::string tmp(const std::string& n) {
   return (std::filesystem::temp_directory_path() / ("ablmg_surfpic_" + std::to_string(::getpid()) + n)).string();
 }
-} // namespace
+}  // namespace
 
 TEST(SurfacePicture, WritesPngOfRequestedWidth) {
   const std::vector<V3> v = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -52,8 +52,8 @@ TEST(SurfacePicture, NearerTriangleHidesFartherOne) {
   // Looking straight down (elevation 90°, screen axes = x, y): the near triangle (z = 1,
   // facing the viewer) and a far, steep one (different shade) both cover the image centre;
   // whatever the input order, the centre shows the near one's colour.
-  const std::vector<V3> v = {{-1, -1, 1}, {1, -1, 1}, {0, 1, 1},            // near, horizontal
-                             {-1, -1, 0}, {1, -1, 0.0}, {0, 1, -1.9}};      // far, steep
+  const std::vector<V3> v = {{-1, -1, 1}, {1, -1, 1},   {0, 1, 1},      // near, horizontal
+                             {-1, -1, 0}, {1, -1, 0.0}, {0, 1, -1.9}};  // far, steep
   const std::vector<std::array<int, 3>> nearFirst = {{0, 1, 2}, {3, 4, 5}};
   const std::vector<std::array<int, 3>> farFirst = {{3, 4, 5}, {0, 1, 2}};
   io::SurfaceViewOptions o;

@@ -23,7 +23,8 @@ TEST(Vtu, WrittenFileReadsBackWithFields) {
   auto pointData = io::metricFields(metrics);
   pointData.push_back({"u", 1, {0, 1, 2, 3, 4}});
   const std::vector<io::Field> cellData = {{"quality", 1, {0.9, 0.8, 0.7, 0.6}}};
-  const std::string p = (std::filesystem::temp_directory_path() / ("ablmg_vtu_" + std::to_string(::getpid()) + ".vtu")).string();
+  const std::string p =
+      (std::filesystem::temp_directory_path() / ("ablmg_vtu_" + std::to_string(::getpid()) + ".vtu")).string();
   io::writeVtu(p, m, pointData, cellData);
 
   vtkNew<vtkXMLUnstructuredGridReader> r;
@@ -56,7 +57,8 @@ TEST(Vtu, WrongFieldSizeNamesTheField) {
 }
 
 TEST(Vtu, SurfaceTrianglesIn3D) {
-  const std::string p = (std::filesystem::temp_directory_path() / ("ablmg_vtu3_" + std::to_string(::getpid()) + ".vtu")).string();
+  const std::string p =
+      (std::filesystem::temp_directory_path() / ("ablmg_vtu3_" + std::to_string(::getpid()) + ".vtu")).string();
   io::writeVtu(p, {{0, 0, 0}, {1, 0, 0}, {0, 1, 2}}, {{0, 1, 2}}, {}, {{"area", 1, {1.5}}});
   vtkNew<vtkXMLUnstructuredGridReader> r;
   r->SetFileName(p.c_str());

@@ -37,7 +37,7 @@ std::vector<std::vector<int>> brute(const Cloud& c, double r) {
   return rows;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Adjacency, BuildEqualsBruteForceAndIsSymmetric) {
   const Cloud c = randomCloud(3000, 7);

@@ -48,9 +48,9 @@ TEST(BubbleForce, PairDistanceEq8OrTheAveragedMetricLength) {
   EXPECT_NEAR(pairDistance(a2, b2, PairDistance::Averaged), average(mi, mj).length(d), 1e-12);  // eq. (3)
   EXPECT_NEAR(pairDistance(0.81, 0.81, PairDistance::Averaged), 0.9, 1e-15);  // equal metrics: the length
   EXPECT_NEAR(pairDistance(0.81, 0.81, PairDistance::Harmonic), 0.9, 1e-15);
-  EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Harmonic), 1.0, 1e-15);  // a = 0.6, b = 3: at rest
+  EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Harmonic), 1.0, 1e-15);              // a = 0.6, b = 3: at rest
   EXPECT_NEAR(pairDistance(0.36, 9.0, PairDistance::Averaged), std::sqrt(4.68), 1e-15);  // … an edge of length 2.16
-  EXPECT_EQ(pairDistance(0.36, 9.0), pairDistance(0.36, 9.0, PairDistance::Harmonic));        // eq. (8) is the default
+  EXPECT_EQ(pairDistance(0.36, 9.0), pairDistance(0.36, 9.0, PairDistance::Harmonic));   // eq. (8) is the default
   EXPECT_EQ(parsePairDistance("averaged"), PairDistance::Averaged);
   EXPECT_STREQ(pairDistanceName(parsePairDistance("eq8")), "eq8");
   EXPECT_THROW(parsePairDistance("mean"), ablmg::InputError);

@@ -55,7 +55,9 @@ TEST(BucketGrid, IncrementalBoxQueryFindsEveryPointInAThinBox) {
   for (int q = 0; q < 200; ++q) {
     const Vec2 c(u(rng), u(rng));
     const double rx = q % 2 ? 0.3 : 1e-4, ry = q % 2 ? 1e-4 : 0.3;  // anisotropy 3·10³ either way
-    const auto inBox = [&](int id) { return std::abs(pts[id].x() - c.x()) <= rx && std::abs(pts[id].y() - c.y()) <= ry; };
+    const auto inBox = [&](int id) {
+      return std::abs(pts[id].x() - c.x()) <= rx && std::abs(pts[id].y() - c.y()) <= ry;
+    };
     bool want = false;
     for (int i = 0; i < int(pts.size()); ++i) want = want || inBox(i);
     EXPECT_EQ(g.anyIncremental(c, rx, ry, inBox), want) << "query " << q;

@@ -45,7 +45,8 @@ EdgeFigures figures(const MeshResult& r) {
     const Metric2 m = (1.0 / 3.0) * (r.metric[t[0]] + r.metric[t[1]] + r.metric[t[2]]);
     const Vec2 &a = r.mesh.vertices[t[0]], &b = r.mesh.vertices[t[1]], &c = r.mesh.vertices[t[2]];
     const double area = 0.5 * cross(b - a, c - a) * std::sqrt(m.det());
-    const double q = 4 * std::sqrt(3.0) * area / (m.squaredLength(b - a) + m.squaredLength(c - b) + m.squaredLength(a - c));
+    const double q =
+        4 * std::sqrt(3.0) * area / (m.squaredLength(b - a) + m.squaredLength(c - b) + m.squaredLength(a - c));
     f.qMean += q;
     f.qMin = std::min(f.qMin, q);
   }
@@ -93,7 +94,7 @@ std::unique_ptr<MetricField> randomMetric(std::uint64_t seed) {
                                                std::to_string(1 / ratio) + "*" + h1, std::to_string(theta) + "+x*y");
 }
 
-} // namespace
+}  // namespace
 
 TEST(SwapCriterion, Eq12DependsOnTheMetric) {
   // A flat quadrilateral: the angles at y and w are nearly straight (α+β > π) in the
@@ -170,7 +171,7 @@ TEST(Connect, LocalRepairAndScaffoldBothValidate) {
     }
   }
   EXPECT_GT(repairs, 0) << "of " << kRandomCases;  // not vacuous: some placements needed a repair
-  EXPECT_GT(local, 0);    // and the local one handled at least one of them
+  EXPECT_GT(local, 0);                             // and the local one handled at least one of them
 }
 
 TEST(Connect, ConstantMetricGivesAnAffineImageOfEquilateralTriangles) {
@@ -190,7 +191,18 @@ TEST(Connect, HoleCloseToTheOuterLoopAndAThinNeck) {
   const MeshResult r1 = meshDomain(Domain(outer, {hole}), ConstantMetricField(Metric2::isotropic(0.05)));
   EXPECT_TRUE(r1.mesh.validate(Domain(outer, {hole}).area()).ok);
   // Two squares joined by a neck one element wide.
-  BoundaryLoop neck{{{0, 0}, {1, 0}, {1, 0.46}, {1.5, 0.46}, {1.5, 0}, {2.5, 0}, {2.5, 1}, {1.5, 1}, {1.5, 0.54}, {1, 0.54}, {1, 1}, {0, 1}},
+  BoundaryLoop neck{{{0, 0},
+                     {1, 0},
+                     {1, 0.46},
+                     {1.5, 0.46},
+                     {1.5, 0},
+                     {2.5, 0},
+                     {2.5, 1},
+                     {1.5, 1},
+                     {1.5, 0.54},
+                     {1, 0.54},
+                     {1, 1},
+                     {0, 1}},
                     {},
                     false};
   const Domain dn(neck);
@@ -206,7 +218,8 @@ TEST(Connect, SmoothLoopFreesTheBoundaryOfCrowdedCorners) {
   BoundaryLoop outer{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {}, false};
   BoundaryLoop circle;
   for (int k = 0; k < 96; ++k)
-    circle.points.emplace_back(0.3 * std::cos(2 * std::numbers::pi * k / 96), 0.3 * std::sin(2 * std::numbers::pi * k / 96));
+    circle.points.emplace_back(0.3 * std::cos(2 * std::numbers::pi * k / 96),
+                               0.3 * std::sin(2 * std::numbers::pi * k / 96));
   const ConstantMetricField h(Metric2::isotropic(0.1));
   double qMin[2];
   int holeEdges[2];
@@ -257,7 +270,8 @@ TEST_P(PaperDiskMesh, QualityAndEdgeLengths) {
   if (std::string(c.h1).empty())
     m = std::make_unique<ConstantMetricField>(Metric2::fromSizes(0.5, 0.2, std::numbers::pi / 4));
   else
-    m = std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Sizes, c.h1, std::string("0.5*(") + c.h1 + ")", "0");
+    m = std::make_unique<AnalyticMetricField>(AnalyticMetricField::Form::Sizes, c.h1, std::string("0.5*(") + c.h1 + ")",
+                                              "0");
   const MeshResult r = meshDomain(Domain::disk({0, 0}, 10), *m);
   const auto f = figures(r);
   EXPECT_GE(f.qMean, 0.95);
@@ -281,7 +295,8 @@ TEST(Connect, PaperEq4SquareWithHole) {
   BoundaryLoop outer{{{-0.6, -0.6}, {0.6, -0.6}, {0.6, 0.6}, {-0.6, 0.6}}, {}, false};
   BoundaryLoop hole{{{-0.2, -0.2}, {0.2, -0.2}, {0.2, 0.2}, {-0.2, 0.2}}, {}, false};
   const Domain d(outer, {hole});
-  const AnalyticMetricField m(AnalyticMetricField::Form::Tensor, "(1+4*x^2)/0.05^2", "4*x*y/0.05^2", "(1+4*y^2)/0.05^2");
+  const AnalyticMetricField m(AnalyticMetricField::Form::Tensor, "(1+4*x^2)/0.05^2", "4*x*y/0.05^2",
+                              "(1+4*y^2)/0.05^2");
   const MeshResult r = meshDomain(d, m);
   const auto f = figures(r);
   EXPECT_GE(f.qMean, 0.95);

@@ -32,11 +32,9 @@ Patch hexPatch(int k, const Metric2& metric) {
 }
 int at(int k, int r, int c) { return (r + k) * (2 * k + 1) + (c + k); }
 
-LocalTopology topologyOf(const Patch& p) {
-  return localTopology(p.x, p.m, p.kinds, buildAdjacency(p.x, p.m, 1.7));
-}
+LocalTopology topologyOf(const Patch& p) { return localTopology(p.x, p.m, p.kinds, buildAdjacency(p.x, p.m, 1.7)); }
 
-} // namespace
+}  // namespace
 
 TEST(LocalTopology, HexagonalLatticeHasDegreeSixEverywhere) {
   const Patch p = hexPatch(6, Metric2::isotropic(1.0));

@@ -33,7 +33,8 @@ Mesh2 gridMesh(int n) {
     for (int i = 0; i <= n; ++i) m.vertices.emplace_back(double(i) / n, double(j) / n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      const int v00 = gridId(n, i, j), v10 = gridId(n, i + 1, j), v01 = gridId(n, i, j + 1), v11 = gridId(n, i + 1, j + 1);
+      const int v00 = gridId(n, i, j), v10 = gridId(n, i + 1, j), v01 = gridId(n, i, j + 1),
+                v11 = gridId(n, i + 1, j + 1);
       m.triangles.push_back({v00, v10, v11});
       m.triangles.push_back({v00, v11, v01});
     }
@@ -91,7 +92,8 @@ void perturbInterior(Mesh2& mesh, double amplitude, std::uint64_t seed) {
     mesh.vertices[std::size_t(v)] = old + delta;
     for (int k = star.offsets[std::size_t(v)]; k < star.offsets[std::size_t(v) + 1]; ++k) {
       const auto& t = mesh.triangles[std::size_t(star.ids[std::size_t(k)])];
-      if (orient2d(mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])], mesh.vertices[std::size_t(t[2])]) <= 0) {
+      if (orient2d(mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
+                   mesh.vertices[std::size_t(t[2])]) <= 0) {
         mesh.vertices[std::size_t(v)] = old;
         break;
       }
@@ -121,7 +123,8 @@ bool hasEdge(const Mesh2& m, int a, int b) {
 /// equilateral triangles around one centre vertex; with two vertices no placement comes close.
 Mesh2 hexagonWithTwoCentres(double eps) {
   Mesh2 m;
-  for (int k = 0; k < 6; ++k) m.vertices.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
+  for (int k = 0; k < 6; ++k)
+    m.vertices.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
   m.vertices.emplace_back(-eps, 0);  // a = 6
   m.vertices.emplace_back(eps, 0);   // b = 7
   const int a = 6, b = 7;
@@ -130,7 +133,7 @@ Mesh2 hexagonWithTwoCentres(double eps) {
   return m;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Improve, PushedInteriorVertexIsPutBack) {
   const int n = 6;
@@ -164,8 +167,7 @@ TEST(Improve, MovedVerticesGetTheFieldsMetric) {
   const int n = 8;
   Mesh2 mesh = gridMesh(n);
   const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, "0.1 + 0.1*x", "0.05 + 0.05*y", "0.3");
-  for (int j = 2; j <= 6; j += 2)
-    mesh.vertices[std::size_t(gridId(n, 4, j))] = Vec2(5.0 / n - 2e-3, (j + 0.5) / n);
+  for (int j = 2; j <= 6; j += 2) mesh.vertices[std::size_t(gridId(n, 4, j))] = Vec2(5.0 / n - 2e-3, (j + 0.5) / n);
   mesh.requireValid("input", 1.0);
   std::vector<Metric2> metrics = metricsAtVertices(mesh, field);
   const Mesh2 before = mesh;
@@ -330,7 +332,8 @@ TEST(Improve, CollapsesAreDeterministicAndKeepTheMetricInStep) {
   const std::vector<Metric2> inputMetrics = metricsAtVertices(input, field);
   Mesh2 a = input, b = input;
   std::vector<Metric2> ma = inputMetrics, mb = inputMetrics;
-  const ImproveStats sa = improveQuality(a, ma, field, {.qThreshold = 0.95}), sb = improveQuality(b, mb, field, {.qThreshold = 0.95});
+  const ImproveStats sa = improveQuality(a, ma, field, {.qThreshold = 0.95}),
+                     sb = improveQuality(b, mb, field, {.qThreshold = 0.95});
   ASSERT_GT(sa.collapses, 0);
   a.requireValid("improved", 1.0);
   EXPECT_TRUE(sameBoundary(a, input));
@@ -365,7 +368,8 @@ TEST(Improve, RandomPerturbedMeshesStayValidAndNeverGetWorse) {
     mesh.requireValid("input", 1.0);
     std::vector<Metric2> metrics(std::size_t(mesh.numVertices()), m);
     const Mesh2 before = mesh;
-    const ImproveStats s = improveQuality(mesh, metrics, field, {.qThreshold = 0.5 + 0.5 * u(rng), .maxPasses = 1 + int(seed % 5)});
+    const ImproveStats s =
+        improveQuality(mesh, metrics, field, {.qThreshold = 0.5 + 0.5 * u(rng), .maxPasses = 1 + int(seed % 5)});
     const auto v = mesh.validate(1.0, 1e-9);
     ASSERT_TRUE(v.ok) << "seed " << seed << ": " << v.firstProblem;
     EXPECT_TRUE(sameBoundary(mesh, before)) << "seed " << seed;
@@ -408,7 +412,8 @@ TEST(Improve, BadOptionsAndMetricCountAreInputErrors) {
 
 TEST(Improve, MeshDomainRunsItAndReportsIt) {
   const Domain square = Domain::rectangle(0, 0, 1, 1);
-  const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, "0.04 + 0.1*abs(x - 0.5)", "0.02 + 0.05*abs(x - 0.5)", "0.4");
+  const AnalyticMetricField field(AnalyticMetricField::Form::Sizes, "0.04 + 0.1*abs(x - 0.5)",
+                                  "0.02 + 0.05*abs(x - 0.5)", "0.4");
   MeshOptions off, strict;
   off.improve.enabled = false;
   strict.improve.qThreshold = 0.95;  // forces work on a mesh whose q min is ~0.7

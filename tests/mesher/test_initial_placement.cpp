@@ -33,7 +33,7 @@ Domain starWithHole(std::uint64_t seed, bool hole) {
   return Domain(outer, holes);
 }
 
-} // namespace
+}  // namespace
 
 TEST(DomainGeometry, InsideAgreesWithDomainContains) {
   for (int s = 0; s < 6; ++s) {
@@ -80,9 +80,7 @@ TEST(DomainGeometry, BoxDistanceToBoundaryIsExactBelowItsRadius) {
       const double disk = geo.metricDistanceToBoundary(p, m, r * h1);
       const double box = geo.metricDistanceToBoundary(p, m, reachBox(m, r));
       EXPECT_EQ(disk < r, box < r) << "point " << q;
-      if (disk < r) {
-        EXPECT_EQ(disk, box) << "point " << q;
-      }
+      if (disk < r) { EXPECT_EQ(disk, box) << "point " << q; }
     }
   }
 }
@@ -223,18 +221,19 @@ double distMod60(double a, double b) {
   const double p = std::numbers::pi / 3, d = std::fmod(std::abs(a - b), p);
   return std::min(d, p - d);
 }
-} // namespace
+}  // namespace
 
 TEST(InitialPlacement, LatticeOrientationTurnsTheRowsInMetricSpace) {
   const double theta = 0.3;
   const Metric2 aniso = Metric2::fromSizes(0.2, 0.05, theta);  // e1 at θ, e2 at θ + π/2
   const double longAxis = std::fmod(theta, std::numbers::pi / 3);
   const double shortAxis = std::fmod(theta + std::numbers::pi / 2, std::numbers::pi / 3);
-  ASSERT_GT(distMod60(longAxis, 0), 0.2);   // the three choices give three different lattices
+  ASSERT_GT(distMod60(longAxis, 0), 0.2);  // the three choices give three different lattices
   ASSERT_GT(distMod60(shortAxis, 0), 0.2);
   ASSERT_GT(distMod60(shortAxis, longAxis), 0.2);
-  const std::pair<LatticeOrientation, double> cases[] = {
-      {LatticeOrientation::Axes, 0.0}, {LatticeOrientation::LongAxis, longAxis}, {LatticeOrientation::ShortAxis, shortAxis}};
+  const std::pair<LatticeOrientation, double> cases[] = {{LatticeOrientation::Axes, 0.0},
+                                                         {LatticeOrientation::LongAxis, longAxis},
+                                                         {LatticeOrientation::ShortAxis, shortAxis}};
   for (const auto& [orientation, expected] : cases) {
     const auto angles = rowAnglesMod60(aniso, orientation);
     ASSERT_EQ(angles.size(), 6u) << latticeOrientationName(orientation);

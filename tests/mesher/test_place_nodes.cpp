@@ -66,7 +66,7 @@ std::unique_ptr<MetricField> randomMetric(std::uint64_t seed) {
 
 bool onBoundary(const Domain& d, const Vec2& p) { return d.distanceToBoundary(p) < 1e-9; }
 
-} // namespace
+}  // namespace
 
 TEST(PlaceNodes, ConstantIsotropicSquareIsHexagonal) {
   const Domain d = Domain::rectangle(0, 0, 2, 2);
@@ -143,7 +143,9 @@ TEST(PlaceNodes, RandomDomainsAndMetricsKeepEveryBubbleInside) {
           ++vertices;
           EXPECT_TRUE(std::find(corners.begin(), corners.end(), p) != corners.end()) << seed << " " << i;
           break;
-        case NodeKind::Segment: EXPECT_TRUE(onBoundary(d, p)) << seed << " " << i; break;
+        case NodeKind::Segment:
+          EXPECT_TRUE(onBoundary(d, p)) << seed << " " << i;
+          break;
         case NodeKind::Interior:
           EXPECT_TRUE(d.contains(p) && !onBoundary(d, p)) << seed << " node " << i << " at " << p.transpose();
           break;
@@ -199,7 +201,8 @@ TEST(PlaceNodes, DeterministicAcrossRunsAndThreadCounts) {
 TEST(PlaceNodes, RefusesTooManyNodesBeforeAllocating) {
   PlacementOptions o;
   o.maxNodes = 1000;
-  EXPECT_THROW(placeNodes(Domain::rectangle(0, 0, 1, 1), ConstantMetricField(Metric2::isotropic(0.001)), o), InputError);
+  EXPECT_THROW(placeNodes(Domain::rectangle(0, 0, 1, 1), ConstantMetricField(Metric2::isotropic(0.001)), o),
+               InputError);
 }
 
 // The paper's §4.3 disk of radius 10 with its three metrics: the acceptance figures of issue 3.
@@ -217,7 +220,8 @@ TEST_P(PaperDisk, CountQualityAndConvergence) {
   const auto& s = r.stats;
   EXPECT_NEAR(double(s.finalNodes) / s.predictedNodes, 1.0, 0.05);
   EXPECT_GE(fractionIn(nearestInterior(r), 0.85, 1.15), 0.95);
-  EXPECT_DOUBLE_EQ(nearestNeighbourShare(r), fractionIn(nearestInterior(r), 0.85, 1.15));  // what `ablmg mesh --report` says
+  EXPECT_DOUBLE_EQ(nearestNeighbourShare(r),
+                   fractionIn(nearestInterior(r), 0.85, 1.15));  // what `ablmg mesh --report` says
   EXPECT_LE(s.finalResidual, 0.01 * s.initialResidual);
   EXPECT_FALSE(s.hitStepCap);
   EXPECT_TRUE(r.adjacency.isSymmetric());
@@ -225,7 +229,8 @@ TEST_P(PaperDisk, CountQualityAndConvergence) {
 
 INSTANTIATE_TEST_SUITE_P(Section43, PaperDisk,
                          ::testing::Values(DiskCase{"0.5", "0.2", "pi/4"},
-                                           DiskCase{"0.15*abs(sqrt(x^2+y^2)-6)+0.2", "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0"},
+                                           DiskCase{"0.15*abs(sqrt(x^2+y^2)-6)+0.2",
+                                                    "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0"},
                                            DiskCase{"0.1*abs(y)+0.2", "0.5*(0.1*abs(y)+0.2)", "0"}));
 
 TEST(PlaceNodes, WarmStartFromConvergedNodesNeedsFewSteps) {
@@ -244,7 +249,9 @@ TEST(PlaceNodes, WarmStartFromConvergedNodesNeedsFewSteps) {
     if (cold.nodes.kinds[i] == NodeKind::Interior) o.warmStart.push_back(cold.nodes.positions[i]);
   const PlacementResult warm = placeNodes(disk, m, o);
   EXPECT_NEAR(double(warm.stats.initialNodes), double(cold.stats.finalNodes), 0.01 * cold.stats.finalNodes);
-  EXPECT_LT(warm.stats.steps, 0.7 * cold.stats.steps) << "warm residual " << warm.stats.initialResidual << " -> " << warm.stats.finalResidual << ", cold " << cold.stats.initialResidual << " -> " << cold.stats.finalResidual;
+  EXPECT_LT(warm.stats.steps, 0.7 * cold.stats.steps)
+      << "warm residual " << warm.stats.initialResidual << " -> " << warm.stats.finalResidual << ", cold "
+      << cold.stats.initialResidual << " -> " << cold.stats.finalResidual;
   EXPECT_GE(fractionIn(nearestInterior(warm), 0.85, 1.15), 0.95);
 }
 

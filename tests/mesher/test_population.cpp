@@ -31,7 +31,7 @@ BubbleSystem interiorSystem(const DomainGeometry& geo, const std::vector<Vec2>& 
   return sys;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Population, OverlapRatioIsSixInsideALatticeAndTwoOnALine) {
   std::vector<Vec2> x;
@@ -72,7 +72,8 @@ TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
   BubbleSystem sys = interiorSystem(geo, x, field);
   const int before = sys.size();
   PopulationOptions o;  // no steering
-  const PopulationChange c = adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
+  const PopulationChange c =
+      adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
   EXPECT_EQ(c.deleted, 1);
   EXPECT_GE(c.inserted, 1);
   bool filled = false, removed = true;
@@ -103,7 +104,8 @@ TEST(Population, SteeringFillsASmallHoleOnlyBelowTheTarget) {
     if ((p - hole).norm() < 0.11) p = hole + 0.85 * (p - hole);
   auto insertedNearHole = [&](const PopulationOptions& o) {
     BubbleSystem sys = interiorSystem(geo, x, field);
-    const PopulationChange c = adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
+    const PopulationChange c =
+        adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o);
     int near = 0;  // the rim of the patch has real gaps: count only insertions near the hole
     for (int i = c.firstNew; i < sys.size(); ++i) near += (sys.nodes().positions[i] - hole).norm() < 0.15;
     return near;

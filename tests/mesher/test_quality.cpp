@@ -25,9 +25,11 @@ Mesh2 unitEquilateral() {
 }
 
 template <std::size_t N>
-double sum(const std::array<double, N>& a) { return std::accumulate(a.begin(), a.end(), 0.0); }
+double sum(const std::array<double, N>& a) {
+  return std::accumulate(a.begin(), a.end(), 0.0);
+}
 
-} // namespace
+}  // namespace
 
 TEST(Quality, UnitEquilateralInIdentityMetric) {
   const Mesh2 m = unitEquilateral();

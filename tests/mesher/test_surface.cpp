@@ -90,10 +90,13 @@ TEST_P(BuiltinSurfaceMesh, ManifoldWithLeeQualityAndEdgeLengths) {
   EXPECT_GE(q.elements.min, 0.33);
   EXPECT_GE(q.edgeLengths.inSqrt2, 0.98);
 }
-INSTANTIATE_TEST_SUITE_P(Issue10, BuiltinSurfaceMesh, ::testing::Values("paper-fig16", "sphere-patch", "torus", "torus-closed", "cylinder", "saddle"),
+INSTANTIATE_TEST_SUITE_P(Issue10, BuiltinSurfaceMesh,
+                         ::testing::Values("paper-fig16", "sphere-patch", "torus", "torus-closed", "cylinder",
+                                           "saddle"),
                          [](const auto& info) {
                            std::string n = info.param;
-                           for (char& c : n) if (c == '-') c = '_';
+                           for (char& c : n)
+                             if (c == '-') c = '_';
                            return n;
                          });
 
@@ -113,5 +116,6 @@ TEST(Surface, ClosedTorusIsWeldedIntoATorus) {
   EXPECT_EQ(V - E + F, 0);
   EXPECT_EQ(long(r.mesh.triangles.size()), F);  // welding merges vertices only
   EXPECT_LT(V, r.mesh.numVertices());
-  EXPECT_NEAR(s.area(), 4 * std::numbers::pi * std::numbers::pi * 1.0 * 0.3, 0.02 * 4 * std::numbers::pi * std::numbers::pi * 0.3);
+  EXPECT_NEAR(s.area(), 4 * std::numbers::pi * std::numbers::pi * 1.0 * 0.3,
+              0.02 * 4 * std::numbers::pi * std::numbers::pi * 0.3);
 }

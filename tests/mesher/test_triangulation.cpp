@@ -31,13 +31,14 @@ std::vector<std::array<int, 2>> squareBoundary(std::vector<Vec2>& pts, int perSi
   const int first = int(pts.size());
   const Vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   for (int s = 0; s < 4; ++s)
-    for (int k = 0; k < perSide; ++k) pts.push_back(corners[s] + (corners[(s + 1) % 4] - corners[s]) * (double(k) / perSide));
+    for (int k = 0; k < perSide; ++k)
+      pts.push_back(corners[s] + (corners[(s + 1) % 4] - corners[s]) * (double(k) / perSide));
   const int n = int(pts.size()) - first;
   for (int k = 0; k < n; ++k) b.push_back({first + k, first + (k + 1) % n});
   return b;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Triangulation, RandomPointsGiveADelaunayTriangulation) {
   std::mt19937 rng(7);
@@ -57,7 +58,8 @@ TEST(Triangulation, RandomPointsGiveADelaunayTriangulation) {
     const Vec2 &a = pts[tr[0]], &b = pts[tr[1]], &c = pts[tr[2]];
     const double d = 2 * cross(b - a, c - a);
     const Vec2 centre = a + Vec2((c - a).y() * (b - a).squaredNorm() - (b - a).y() * (c - a).squaredNorm(),
-                                 (b - a).x() * (c - a).squaredNorm() - (c - a).x() * (b - a).squaredNorm()) / d;
+                                 (b - a).x() * (c - a).squaredNorm() - (c - a).x() * (b - a).squaredNorm()) /
+                                d;
     const double r2 = (a - centre).squaredNorm();
     for (const auto& p : pts) EXPECT_GE((p - centre).squaredNorm(), r2 * (1 - 1e-9));
   }
