@@ -389,6 +389,14 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
     result.adjacency = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
   else
     result.adjacency = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+  // No two nodes share a point (node_set.hpp): the chains keep their boundary nodes apart by
+  // construction (bubble_system.hpp); bubbles that came to rest on one point are merged here.
+  std::vector<char> drop;
+  st.coincidentDropped = coincidentNodes(sys.nodes(), result.adjacency, drop);
+  if (st.coincidentDropped > 0) {
+    sys.remove(drop, true);
+    result.adjacency = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
+  }
   st.secondsAdjacency += since(t);
   result.boundaryEdges = boundaryEdgesOf(sys, geo);
   result.metrics = sys.metrics();
