@@ -1,4 +1,4 @@
-// Benchmark suite of issue 7: every stage of the pipeline at one size, and the table.
+// Benchmark suite (scripts/bench.sh): every stage of the pipeline at one size, and the table.
 //
 //   bench_stages --triangles N --json OUT.json   one size, one process (so that the peak memory
 //                                                 is this size's): mesh, write, P1 solve

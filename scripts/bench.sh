@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The benchmark suite of issue 7, one command:
+# The benchmark suite, one command:
 #
 #   bash scripts/bench.sh                      # 10⁴, 10⁵, 10⁶ triangles (about 30 s after the build)
 #   BENCH_SIZES="10000 100000" bash scripts/bench.sh   # a quick run

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# `ablmg remesh` throughput (issue 7: ≥ 10⁵ output triangles per second at ≈ 10⁵ triangles,
-# file reading and writing included), one command:
+# `ablmg remesh` throughput (output triangles per second at ≈ 10⁵ triangles, file reading and
+# writing included), one command:
 #
 #   bash scripts/bench_remesh.sh            # about a minute after the build
 #   MMG=/path/to/mmg2d_O3 bash scripts/bench_remesh.sh   # also time MMG2D on the same files

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Re-measures the quality figures of the README (not the timings: scripts/bench.sh and
 # scripts/bench_remesh.sh do those) and prints them as Markdown tables:
-#   1. bubble placement on the paper's disks (issue 3): nodes vs N*, nearest neighbours, residual drop;
-#   2. the ABLMG meshes of the same cases (issue 9): q, edge lengths, repaired triangles;
-#   3. the same disks given as mesh + metric pairs to `ablmg remesh` (issue 9);
-#   4. the parametric surfaces of Table 2 (issue 10);
-#   5. the adaptive loop: the flagship and the other problems of the library (issue 11).
+#   1. bubble placement on the paper's disks: nodes vs N*, nearest neighbours, residual drop;
+#   2. the ABLMG meshes of the same cases: q, edge lengths, repaired triangles;
+#   3. the same disks given as mesh + metric pairs to `ablmg remesh`;
+#   4. the parametric surfaces of Table 2;
+#   5. the adaptive loop: the flagship and the other problems of the library.
 # Usage: bash scripts/figures.sh [OUT_DIR]   (default out/figures; needs build/bin/ablmg;
 # about a minute on 2 cores). Deterministic: the same build gives the same tables.
 set -euo pipefail
@@ -43,7 +43,7 @@ import json, sys, os
 out, cases = sys.argv[1], sys.argv[2:]
 load = lambda p: json.load(open(os.path.join(out, p)))
 pct = lambda x: f"{100 * x:.1f} %"
-print("### Bubble placement (issue 3)\n")
+print("### Bubble placement\n")
 print("| case | nodes | N* | nodes / N* | nearest neighbour in [0.85, 1.15] | residual drop | steps |\n|---|---|---|---|---|---|---|")
 for c in cases:
     p = load(f"{c}.report.json")["stats"]["placement"]
@@ -58,16 +58,16 @@ def quality_rows(suffix, report):
         print(f"| {c} | {q['vertices']} | {q['triangles']} | {e['mean']:.3f} | {e['min']:.3f} | {pct(l['in_sqrt2'])} | "
               f"{pct(l['within_10pct'])} | {rep} |")
 head = "| case | nodes | triangles | q mean | q min | edges in [1/√2, √2] | ±10 % | repaired |\n|---|---|---|---|---|---|---|---|"
-print("\n### ABLMG meshes (issue 9), `ablmg mesh` + `ablmg stats --sol`\n\n" + head)
+print("\n### ABLMG meshes, `ablmg mesh` + `ablmg stats --sol`\n\n" + head)
 quality_rows(".stats.json", ".report.json")
 print("\n### The same cases as mesh + metric pairs, `ablmg remesh -hgrad -1 --report`\n\n" + head)
 quality_rows(".pair.report.json", ".pair.report.json")
-print("\n### Surfaces (issue 10)\n\n| surface, h | N | E | α 0–0.6 / 0.6–0.8 / 0.8–1.0 | α min | α mean | edges in [h/√2, h√2] |\n|---|---|---|---|---|---|---|")
+print("\n### Surfaces\n\n| surface, h | N | E | α 0–0.6 / 0.6–0.8 / 0.8–1.0 | α min | α mean | edges in [h/√2, h√2] |\n|---|---|---|---|---|---|---|")
 for f in sorted(x for x in os.listdir(out) if x.startswith("surface_") and x.endswith(".json")):
     q = load(f)["quality"]; a = q["element_quality"]; b = a["bins"]
     print(f"| {f[8:-5]} | {q['vertices']} | {q['triangles']} | {pct(b[0] + b[1] + b[2])} / {pct(b[3])} / {pct(b[4])} | "
           f"{a['min']:.3f} | {a['mean']:.3f} | {pct(q['edge_length']['in_sqrt2'])} |")
-print("\n### Adaptive loop (issue 11)\n\n| run | last cycle: vertices, L2, H1, L2 interpolant | rates L2 / H1 / interpolant (last 4) | q mean / min (last) | q min (all cycles) |\n|---|---|---|---|---|")
+print("\n### Adaptive loop\n\n| run | last cycle: vertices, L2, H1, L2 interpolant | rates L2 / H1 / interpolant (last 4) | q mean / min (last) | q min (all cycles) |\n|---|---|---|---|---|")
 for d in ["flagship"] + sorted(x for x in os.listdir(out) if x.startswith("adapt_")):
     j = load(f"{d}/convergence.json"); last = j["cycles"][-1]; r = j["rates"]
     print(f"| {d} | {last['vertices']}, {last['l2_error']:.3g}, {last['h1_error']:.3g}, {last['l2_interp_error']:.3g} | "

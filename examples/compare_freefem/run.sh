@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # FreeFem++'s classic adaptmesh loop and ablmg's adaptive loop side by side on Mitchell's wave
-# front, at matched vertex counts (issue 11). One command, from anywhere:
+# front, at matched vertex counts. One command, from anywhere:
 #
 #   examples/compare_freefem/run.sh [--cycles K] [--alpha A] [--shape-blend W] [--out DIR]
 #
