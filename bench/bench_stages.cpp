@@ -5,7 +5,7 @@
 //   bench_stages --table A.json B.json ... [--md OUT.md] [--json OUT.json]
 //                                                 the sizes side by side, with fitted exponents
 //
-// The case is the one of the README's speed table: the radius-10 disk with the constant
+// The case is the one of docs/benchmarks.md's stage table: the radius-10 disk with the constant
 // anisotropic metric h1 = 2.5 h2, θ = π/4, sized so that the mesh has about N triangles.
 // Stages: initial placement, dynamics (and per step), adjacency upkeep, population control,
 // ABLMG connection, validation (mesher::MeshResult stats), .mesh and .vtu writing, P1 assembly
