@@ -1,4 +1,4 @@
-// compare_freefem_plot: the table and the picture of examples/compare_freefem/run.sh (issue 11).
+// compare_freefem_plot: the table and the picture of examples/compare_freefem/run.sh.
 //
 //   compare_freefem_plot --freefem freefem.csv --freefem-mesh freefem_final.mesh --ablmg DIR
 //                        --png compare.png --md compare.md [--freefem-wall S] [--ablmg-wall S]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # FreeFem++'s classic adaptmesh loop and ablmg's adaptive loop side by side on Mitchell's wave
-# front, at matched vertex counts (issue 11). One command, from anywhere:
+# front, at matched vertex counts. One command, from anywhere:
 #
 #   examples/compare_freefem/run.sh [--cycles K] [--alpha A] [--shape-blend W] [--out DIR]
 #
@@ -9,6 +9,8 @@
 #   --shape-blend W  ablmg's metric shape (adapt/metric_from_hessian.hpp; default 0.25, the
 #               measured best for the H1 error on this problem; "none" = the L4 metric's own)
 #   --out DIR   output directory (default out/compare_freefem under the repository)
+#   --update-docs  also write the table into docs/benchmarks.md (between <!-- compare_freefem:begin -->
+#               and <!-- compare_freefem:end -->, with the date, machine, commit and this command)
 #   ABLMG_BUILD=DIR  build directory (default build under the repository)
 #
 # Steps: 1. install freefem++ with apt-get if FreeFem++ is missing (needs root or sudo);
@@ -26,13 +28,16 @@ cycles=12
 alpha=20
 blend=0.25
 out="$repo/out/compare_freefem"
+updateDocs=0
+args="$*"
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --cycles) cycles=$2; shift 2 ;;
     --alpha) alpha=$2; shift 2 ;;
     --shape-blend) blend=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    *) echo "run.sh: unknown argument '$1' (valid: --cycles K --alpha A --shape-blend W --out DIR)" >&2; exit 2 ;;
+    --update-docs) updateDocs=1; shift ;;
+    *) echo "run.sh: unknown argument '$1' (valid: --cycles K --alpha A --shape-blend W --out DIR --update-docs)" >&2; exit 2 ;;
   esac
 done
 build=${ABLMG_BUILD:-$repo/build}
@@ -84,3 +89,7 @@ t3=$(now)
   --ablmg "$out/ablmg" --freefem-wall "$(awk "BEGIN { print $t1 - $t0 }")" --ablmg-wall "$(awk "BEGIN { print $t3 - $t2 }")" \
   --png "$out/compare.png" --md "$out/compare.md"
 cat "$out/compare.md"
+if [[ $updateDocs == 1 ]]; then
+  python3 "$repo/scripts/update_benchmarks.py" compare_freefem "$out/compare.md" \
+    --command "examples/compare_freefem/run.sh $args"
+fi
