@@ -1,5 +1,5 @@
 #pragma once
-/// The adaptive solve loop (issue 11): solve → errors → recover → metric → remesh, per cycle.
+/// The adaptive solve loop: solve → errors → recover → metric → remesh, per cycle.
 ///
 ///   cycle k:  mesh_k ─ fem::solvePoisson ─▶ u_k ─ errors vs exact u ─▶ CycleReport
 ///             u_k ─ recoverHessians ─▶ H_k ─ metricFromHessians(N_{k+1}) [─ limitGradation]
@@ -64,24 +64,13 @@ struct AdaptOptions {
   HessianMethod hessian = HessianMethod::LeastSquares;
   MetricOptions metric;  ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
   double hgrad = 0;      ///< > 1: gradation (gradation.hpp); ≤ 0: off
-  /// The mesher's options. The loop's default turns the initial lattice so that one row of
+  /// The mesher's options for the loop. The initial lattice is turned so that one row of
   /// bubbles runs along each node's short-size direction (LatticeOrientation::ShortAxis, the
-  /// Hessian's steep eigenvector): at equal vertex count on the wave front (α = 20, p = 4,
-  /// 2·10³–1.1·10⁵ vertices) the H1 error falls from 0.98–1.01× to 0.87–0.96× FreeFem's and the
-  /// L2 error from 0.71–0.75× to 0.50–0.63× (README). The P1 gradient error on a triangle that is
-  /// equilateral in the metric still depends on its orientation; the bubble dynamics keeps the
-  /// orientation it starts from (the forces do not depend on it).
-  ///
-  /// Placement also stops on the quality plateau, as `ablmg remesh` does (plateauSteps 10,
-  /// plateauGain 0.01, mesher/place_nodes.hpp): metrics from a solver rarely let the bubble
-  /// residual settle. Wave front to 1.1·10⁵ vertices (compare_freefem's schedule, p = 4, shape
-  /// blend 0.25): remeshes 4.3 s instead of 6.4–6.8 s, errors 0–6 % higher (L2 0.64–0.71×,
-  /// H1 0.83–0.89× FreeFem's instead of 0.62–0.71×, 0.81–0.89×); plateauGain 0.002: 5.2–5.8 s
-  /// with the errors of the full run. The quality post-pass keeps q min ≥ 0.64 either way.
-  /// No defect annealing (mesher/defects.hpp) in the loop: it only runs when the population
-  /// settles before the plateau stop, so some cycles got it and others not, and where it ran
-  /// it did not help the FE error (lshape at 8k vertices: H1 0.0163 with it, 0.0152 without;
-  /// session 6); it exists for the edge-length statistics of `ablmg mesh`.
+  /// Hessian's steep eigenvector): the P1 gradient error on a metric-equilateral triangle depends
+  /// on its orientation, and the bubble dynamics keeps the orientation it starts from. Placement
+  /// stops on the quality plateau (plateauSteps 10, plateauGain 0.01, mesher/place_nodes.hpp),
+  /// since metrics from a solver rarely let the bubble residual settle. No defect annealing
+  /// (mesher/defects.hpp): it does not lower the FE error. Measured: docs/method.md.
   mesher::MeshOptions mesh = [] {
     mesher::MeshOptions m;
     m.placement.lattice.orientation = mesher::LatticeOrientation::ShortAxis;

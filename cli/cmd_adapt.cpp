@@ -1,4 +1,4 @@
-// ablmg adapt: the adaptive solve loop (issue 11) on a library problem or on a problem of the
+// ablmg adapt: the adaptive solve loop on a library problem or on a problem of the
 // user's own (CONFIG.json: domain, κ, f, boundary data, optionally the exact solution), with reports.
 //
 //   ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json)
@@ -447,8 +447,8 @@ int runAdapt(const std::vector<std::string>& argv) {
     }
     curves.push_back(ul);
     curves.push_back(uh);
-    // What the adaptive curve pays for the finest uniform mesh's errors (issue 11's "reached with
-    // at least 10× fewer vertices"): log–log interpolation along the cycles.
+    // The vertices the adaptive curve needs for the finest uniform mesh's errors (how many times
+    // fewer vertices adaptivity needs): log–log interpolation along the cycles.
     std::vector<double> an, al2, ah1;
     for (const auto& r : report.cycles)
       if (r.vertices > 0 && r.l2 > 0 && r.h1 > 0 && std::isfinite(r.l2) && std::isfinite(r.h1)) {
