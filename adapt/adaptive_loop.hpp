@@ -39,8 +39,27 @@
 
 namespace ablmg::adapt {
 
+/// The default schedule of `ablmg adapt --vertices N`: from a coarse start to N, sizes growing
+/// geometrically, several adaptation passes at each size up to passesUpTo vertices. The coarse
+/// passes are cheap (the cost of a cycle is about linear in N, so all cycles below N cost about
+/// growth/(growth − 1) × the last one) and let the metric find thin features (a front of width
+/// 1/1000, a peak, a corner) before the vertices are spent: a uniform mesh of N_0 vertices cannot
+/// see a feature narrower than its size, the first adapted mesh sees it roughly, the second pass
+/// at the same N resolves it.
+struct ScheduleOptions {
+  double startVertices = 400;  ///< N_0 (≥ 10): the first size is in [N_0, growth · N_0), or N if N ≤ N_0
+  double growth = 2;           ///< N_{k+1} / N_k (> 1); the last size is N exactly
+  int passes = 2;              ///< adaptation passes per size (≥ 1) below passesUpTo
+  double passesUpTo = 1e4;     ///< sizes ≥ this get one pass
+};
+
+/// Targets N_k of the schedule ending at `finalVertices` (≥ 10): N_0, ..., N each repeated
+/// `passes` times while below passesUpTo; increasing, ends with finalVertices. Throws InputError
+/// naming the field for values out of range.
+std::vector<double> geometricSchedule(double finalVertices, const ScheduleOptions& options = {});
+
 struct AdaptOptions {
-  std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
+  std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each; geometricSchedule builds one)
   int cycles = 0;                                              ///< 0 = targetVertices.size(); more repeats the last N
   HessianMethod hessian = HessianMethod::LeastSquares;
   MetricOptions metric;  ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
@@ -95,7 +114,9 @@ struct CycleReport {
 
 struct AdaptReport {
   std::vector<CycleReport> cycles;
-  int rateWindow = 0;                               ///< cycles used by the fitted rates (last min(4, K))
+  /// Cycles used by the fitted rates: the last cycle of each target size (passes at one size are
+  /// not points of the convergence curve), the last min(4, sizes) of them.
+  int rateWindow = 0;
   double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
   double l2InterpEstimateRate = 0;                  ///< the same for l2InterpEstimate (known without exact u)
   bool errorsDecrease = false;                      ///< l2 and h1 fall from the first cycle to the last
