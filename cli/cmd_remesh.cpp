@@ -38,6 +38,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
   -sol, -met SOL   per-vertex metric (type 1 sizes or type 3 tensors m11 m12 m22);
                    default IN.sol
+  -met-field K     with several solution fields in SOL, use field K (1-based; type 1 or 3);
+                   default: the one tensor field if there is exactly one, else the first
   -out OUT.mesh    output mesh (+ OUT.sol, the metric at the new vertices); default IN.o.mesh
   -hmin H, -hmax H clamp the metric sizes h1, h2 to [hmin, hmax]
   -hgrad G         size gradation β > 1 (metric-space, adapt/gradation.hpp), applied on the
@@ -69,12 +71,18 @@ double parseNumber(const std::string& flag, const std::string& v) {
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
 /// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
-std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol) {
-  auto solRead = std::async(std::launch::async, [&sol] { return io::readSol(sol); });
+/// The reader's warnings (repaired quirks of the file) are printed to stderr, once the mesh is
+/// known valid, unless verbose < 0.
+std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field,
+                                                  int verbose) {
+  auto solRead = std::async(std::launch::async, [&sol, field] { return io::readSol(sol, -1, field); });
   Mesh2 mesh;
+  std::vector<std::string> warnings;
   bool valid = false;
   try {
-    mesh = io::readMesh(in);
+    io::MeshFile file = io::readMeshFile(in);
+    warnings = std::move(file.warnings);
+    mesh = std::move(file.mesh);
     valid = mesh.validate().ok;
   } catch (...) {
     solRead.wait();
@@ -85,15 +93,17 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   try {
     metrics = solRead.get();
   } catch (...) { solOk = false; }
-  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices());
+  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices(), field);
   if (!valid) mesh.requireValid(in);
+  if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
+    for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};
 }
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
-  int verbose = 1;
+  int verbose = 1, metField = 0;
   long long seed = 1;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -111,7 +121,11 @@ int runRemesh(const std::vector<std::string>& args) {
       sol = value();
     else if (a == "-out")
       out = value();
-    else if (a == "-hmin")
+    else if (a == "-met-field") {
+      const double k = parseNumber(a, value());
+      ABLMG_REQUIRE(k >= 1 && k <= 64 && k == std::floor(k), "-met-field must be an integer in [1, 64], got " << k);
+      metField = int(k);
+    } else if (a == "-hmin")
       hmin = parseNumber(a, value());
     else if (a == "-hmax")
       hmax = parseNumber(a, value());
@@ -160,6 +174,7 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
                 {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
                 {"v", verbose},
+                {"metField", metField},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
@@ -170,7 +185,7 @@ int runRemesh(const std::vector<std::string>& args) {
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
   const auto tRead = Clock::now();
-  auto inputs = readInputs(in, sol);
+  auto inputs = readInputs(in, sol, metField, verbose);
   const double secondsRead = since(tRead);
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
