@@ -30,6 +30,28 @@ void validate(const AdaptOptions& o) {
   validate(m);
 }
 
+std::vector<double> geometricSchedule(double finalVertices, const ScheduleOptions& o) {
+  ABLMG_REQUIRE(std::isfinite(finalVertices) && finalVertices >= 10 && finalVertices <= 1e9,
+                "adapt schedule: final vertices must be in [10, 1e9] (got " << finalVertices << ")");
+  ABLMG_REQUIRE(std::isfinite(o.startVertices) && o.startVertices >= 10,
+                "adapt schedule: startVertices must be >= 10 (got " << o.startVertices << ")");
+  ABLMG_REQUIRE(std::isfinite(o.growth) && o.growth > 1.01 && o.growth <= 100,
+                "adapt schedule: growth must be in (1.01, 100] (got " << o.growth << ")");
+  ABLMG_REQUIRE(o.passes >= 1 && o.passes <= 20, "adapt schedule: passes must be in 1..20 (got " << o.passes << ")");
+  // Backwards from N by the growth factor, so that the last steps have the full ratio; the
+  // first size lies in [N_0, growth · N_0) (or is N itself when N ≤ N_0).
+  const int steps = finalVertices > o.startVertices
+                        ? int(std::floor(std::log(finalVertices / o.startVertices) / std::log(o.growth) + 1e-9))
+                        : 0;
+  std::vector<double> sizes;
+  for (int k = steps; k >= 1; --k) sizes.push_back(std::round(finalVertices / std::pow(o.growth, k)));
+  sizes.push_back(finalVertices);
+  std::vector<double> out;
+  for (double n : sizes)
+    for (int k = 0; k < (n < o.passesUpTo ? o.passes : 1); ++k) out.push_back(n);
+  return out;
+}
+
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options) {
   ABLMG_REQUIRE(targetVertices > 0, "uniformMesh: targetVertices must be > 0 (got " << targetVertices << ")");
   const double h = std::sqrt(domain.area() / complexityForVertices(targetVertices));
@@ -134,26 +156,32 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   }
 
   const int n = int(report.cycles.size());
-  report.rateWindow = std::min(4, n);
-  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
+  // The convergence curve: the last cycle of each target size.
   std::vector<double> nv, l2, h1, li, le;
-  for (const auto& c : report.cycles) {
+  for (int k = 0; k < n; ++k) {
+    const auto& c = report.cycles[std::size_t(k)];
+    if (k + 1 < n && report.cycles[std::size_t(k) + 1].targetVertices == c.targetVertices) continue;
     nv.push_back(double(c.vertices));
     l2.push_back(c.l2);
     h1.push_back(c.h1);
     li.push_back(c.l2Interp);
     le.push_back(c.l2InterpEstimate);
   }
+  const int points = int(nv.size());
+  report.rateWindow = std::min(4, points);
+  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
   bool distinct = false;
-  for (int i = n - report.rateWindow + 1; i < n; ++i) distinct = distinct || nv[i] != nv[n - report.rateWindow];
+  for (int i = points - report.rateWindow + 1; i < points; ++i)
+    distinct = distinct || nv[i] != nv[points - report.rateWindow];
   const bool positive = std::all_of(le.end() - report.rateWindow, le.end(), [](double e) { return e > 0; });
-  if (n >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
-  if (n >= 2 && distinct && problem.exact) {
+  if (points >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
+  if (points >= 2 && distinct && problem.exact) {
     report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
     report.h1Rate = logLogSlope(nv, h1, report.rateWindow);
     report.l2InterpRate = logLogSlope(nv, li, report.rateWindow);
   }
-  report.errorsDecrease = n >= 2 && l2.back() < l2.front() && h1.back() < h1.front();
+  report.errorsDecrease = n >= 2 && report.cycles.back().l2 < report.cycles.front().l2 &&
+                          report.cycles.back().h1 < report.cycles.front().h1;
   return report;
 }
 

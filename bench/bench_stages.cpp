@@ -1,11 +1,11 @@
-// Benchmark suite of issue 7: every stage of the pipeline at one size, and the table.
+// Benchmark suite (scripts/bench.sh): every stage of the pipeline at one size, and the table.
 //
 //   bench_stages --triangles N --json OUT.json   one size, one process (so that the peak memory
 //                                                 is this size's): mesh, write, P1 solve
 //   bench_stages --table A.json B.json ... [--md OUT.md] [--json OUT.json]
 //                                                 the sizes side by side, with fitted exponents
 //
-// The case is the one of the README's speed table: the radius-10 disk with the constant
+// The case is the one of docs/benchmarks.md's stage table: the radius-10 disk with the constant
 // anisotropic metric h1 = 2.5 h2, θ = π/4, sized so that the mesh has about N triangles.
 // Stages: initial placement, dynamics (and per step), adjacency upkeep, population control,
 // ABLMG connection, validation (mesher::MeshResult stats), .mesh and .vtu writing, P1 assembly

@@ -52,7 +52,7 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
-                   metrics, see README), long
+                   metrics, see docs/method.md), long
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
@@ -157,7 +157,7 @@ int runRemesh(const std::vector<std::string>& args) {
   ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
                 "--report must not be the output mesh or .sol");
 
-  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and README "Speed"
+  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and docs/method.md
   options.hmin = hmin;
   options.hmax = hmax;
   options.hgrad = hgrad;  // -1 (any value < 0) is "off" for both
