@@ -12,6 +12,7 @@
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -19,7 +20,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -181,20 +181,18 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
-  const auto tRead = Clock::now();
+  Stopwatch watch;
   auto inputs = readInputs(in, sol, metField, verbose);
-  const double secondsRead = since(tRead);
+  const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
-  const auto tWrite = Clock::now();
+  watch.restart();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
-  const double secondsWrite = since(tWrite);
+  const double secondsWrite = watch.seconds();
   if (!reportPath.empty()) {
     try {
       nlohmann::json report = resolved;
