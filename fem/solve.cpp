@@ -44,11 +44,14 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
   Cholesky llt;
   Eigen::VectorXd x;
   double orderingSeconds = 0;
-  if (options.ordering == Ordering::GeometricNestedDissection) {
-    ABLMG_REQUIRE(Eigen::Index(system.dofPoints.size()) == n, "solve: geometric ordering needs dofPoints ("
-                                                                  << system.dofPoints.size() << " for " << n
-                                                                  << " unknowns)");
-    const std::vector<int> order = geometricNestedDissection(system.A, system.dofPoints, options.leafSize);
+  if (options.ordering != Ordering::Cholmod) {
+    ABLMG_REQUIRE(
+        options.ordering == Ordering::Metis || Eigen::Index(system.dofPoints.size()) == n,
+        "solve: geometric ordering needs dofPoints (" << system.dofPoints.size() << " for " << n << " unknowns)");
+    const std::vector<int> order =
+        options.ordering == Ordering::Metis
+            ? metisNestedDissection(system.A)
+            : geometricNestedDissection(system.A, system.dofPoints, options.leafSize, options.cut);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P{int(n)};  // old index → new index
     for (int k = 0; k < int(n); ++k) P.indices()[order[k]] = k;
     Eigen::SparseMatrix<double> Ap;
@@ -71,6 +74,7 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
     stats->unknowns = int(n);
     stats->nonZeros = long(system.A.nonZeros());
     stats->factorNonZeros = llt.cholmod().lnz;
+    stats->factorFlops = llt.cholmod().fl;
     const double bn = system.b.norm();
     stats->residual = bn > 0 ? (system.A * x - system.b).norm() / bn : (system.A * x).norm();
   }
