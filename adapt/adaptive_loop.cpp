@@ -3,18 +3,13 @@
 #include "ablmg/adapt/convergence.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/stopwatch.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::adapt {
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
-
 void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(!o.targetVertices.empty(), "adapt options: targetVertices is empty");
   for (std::size_t k = 0; k < o.targetVertices.size(); ++k)
@@ -97,9 +92,9 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   AdaptReport report;
-  auto t0 = Clock::now();
+  Stopwatch watch;
   mesher::MeshResult current = uniformMesh(problem.domain, target(0), options.mesh);
-  double tMesh = since(t0);
+  double tMesh = watch.seconds();
   for (int k = 0; k < cycles; ++k) {
     CycleReport row;
     row.cycle = k;
@@ -112,9 +107,9 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.qMean = q.mean;
     row.qMin = q.min;
 
-    t0 = Clock::now();
+    watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
-    row.tSolve = since(t0);
+    row.tSolve = watch.seconds();
     const fem::ErrorReport err = problem.exact
                                      ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
                                      : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
@@ -129,20 +124,21 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     report.stoppedEarly = reached && k + 1 < cycles;
     const bool last = k + 1 == cycles || reached;
     // Recovered Hessians: the error estimate of every cycle, and the next metric.
-    t0 = Clock::now();
+    watch.restart();
     const auto hessians =
         recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
-    row.tRecover = since(t0);
+    row.tRecover = watch.seconds();
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
-      GradationStats gs;
-      next = metricFromRecovered(current.mesh, hessians, target(k + 1), options, &row.tMetric, &gs);
-      row.gradationSweeps = gs.sweeps;
+      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(k + 1), options);
+      next = std::move(a.metric);
+      row.tMetric = a.secondsMetric;
+      row.gradationSweeps = a.gradation.sweeps;
     }
     report.cycles.push_back(row);
     if (onCycle) onCycle(CycleData{report.cycles.back(), current.mesh, current.metric, sol.u, err, next});
     if (last) break;
-    t0 = Clock::now();
+    watch.restart();
     mesher::MeshOptions meshOptions = options.mesh;
     if (options.warmStart) {
       std::vector<char> onBoundary(std::size_t(current.mesh.numVertices()), 0);
@@ -152,7 +148,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
           meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
     }
     current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
-    tMesh = since(t0);
+    tMesh = watch.seconds();
   }
 
   const int n = int(report.cycles.size());

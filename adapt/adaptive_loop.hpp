@@ -181,15 +181,21 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 /// mesh_0: meshDomain with the uniform isotropic metric of N vertices.
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options = {});
 
+/// The metric for the next mesh and how it was made.
+struct AdaptedMetric {
+  std::vector<Metric2> metric;  ///< one per vertex of the mesh it was computed on
+  GradationStats gradation;     ///< of limitGradation (all zero when options.hgrad ≤ 1)
+  double secondsRecover = 0;    ///< Hessian recovery (adaptMetric only; 0 in metricFromRecovered)
+  double secondsMetric = 0;     ///< metric from the Hessians, bounds, gradation and rescale
+};
+
 /// M for the next mesh: recoverHessians → metricFromHessians(targetVertices) → gradation if
-/// options.hgrad > 1. Per vertex of `mesh`. Times (seconds) go to tRecover/tMetric if non-null.
-std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
-                                 const AdaptOptions& options, double* tRecover = nullptr, double* tMetric = nullptr,
-                                 GradationStats* gradation = nullptr);
+/// options.hgrad > 1, rescaled to the target complexity. Per vertex of `mesh`.
+AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
+                          const AdaptOptions& options);
 
 /// adaptMetric's second half, on Hessians already recovered (one per vertex of `mesh`).
-std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                         const AdaptOptions& options, double* tMetric = nullptr,
-                                         GradationStats* gradation = nullptr);
+AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
+                                  const AdaptOptions& options);
 
 }  // namespace ablmg::adapt

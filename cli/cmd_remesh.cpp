@@ -9,9 +9,11 @@
 // its RemeshOptions, reads the files, calls it, writes the files and prints.
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -19,7 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -38,43 +40,44 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
   -sol, -met SOL   per-vertex metric (type 1 sizes or type 3 tensors m11 m12 m22);
                    default IN.sol
+  -met-field K     with several solution fields in SOL, use field K (1-based; type 1 or 3);
+                   default: the one tensor field if there is exactly one, else the first
   -out OUT.mesh    output mesh (+ OUT.sol, the metric at the new vertices); default IN.o.mesh
   -hmin H, -hmax H clamp the metric sizes h1, h2 to [hmin, hmax]
   -hgrad G         size gradation β > 1 (metric-space, adapt/gradation.hpp), applied on the
                    input mesh after clamping; default 1.3 as MMG; -1 disables
   Node placement stops early on a quality plateau (plateauSteps = 10, plateauGain = 0.01; see
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
-  -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
+  -v N             verbosity, an integer in [-1, 10]: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write)
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see docs/method.md), long
+  --warm-start W   auto (default), on, off: seed the placement with the input's interior
+                   vertices (auto: when half of its edges are already within 10 % of unit
+                   length, e.g. a mesh remeshed to its own metric; see adapt/remesh.hpp)
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
 )";
 
-double parseNumber(const std::string& flag, const std::string& v) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(v, &used);
-  } catch (...) { used = 0; }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x), flag << ": expected a number, got '" << v << "'");
-  return x;
-}
-
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
 /// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
-std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol) {
-  auto solRead = std::async(std::launch::async, [&sol] { return io::readSol(sol); });
+/// The reader's warnings (repaired quirks of the file) are printed to stderr, once the mesh is
+/// known valid, unless verbose < 0.
+std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field,
+                                                  int verbose) {
+  auto solRead = std::async(std::launch::async, [&sol, field] { return io::readSol(sol, -1, field); });
   Mesh2 mesh;
+  std::vector<std::string> warnings;
   bool valid = false;
   try {
-    mesh = io::readMesh(in);
+    io::MeshFile file = io::readMeshFile(in);
+    warnings = std::move(file.warnings);
+    mesh = std::move(file.mesh);
     valid = mesh.validate().ok;
   } catch (...) {
     solRead.wait();
@@ -85,17 +88,20 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   try {
     metrics = solRead.get();
   } catch (...) { solOk = false; }
-  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices());
+  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices(), field);
   if (!valid) mesh.requireValid(in);
+  if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
+    for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};
 }
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
-  int verbose = 1;
+  int verbose = 1, metField = 0;
   long long seed = 1;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
+  adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -111,19 +117,28 @@ int runRemesh(const std::vector<std::string>& args) {
       sol = value();
     else if (a == "-out")
       out = value();
+    else if (a == "-met-field")
+      metField = int(parseInteger(value(), "remesh: " + a, 1, 64));
     else if (a == "-hmin")
-      hmin = parseNumber(a, value());
+      hmin = parseNumber(value(), "remesh: " + a);
     else if (a == "-hmax")
-      hmax = parseNumber(a, value());
+      hmax = parseNumber(value(), "remesh: " + a);
     else if (a == "-hgrad")
-      hgrad = parseNumber(a, value());
+      hgrad = parseNumber(value(), "remesh: " + a);
     else if (a == "-v")
-      verbose = int(parseNumber(a, value()));
+      verbose = int(parseInteger(value(), "remesh: " + a, -1, 10));
     else if (a == "--seed")
-      seed = (long long)parseNumber(a, value());
+      seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
       lattice = mesher::parseLatticeOrientation(value());
-    else if (a == "--report")
+    else if (a == "--warm-start") {
+      const std::string& w = value();
+      ABLMG_REQUIRE(w == "auto" || w == "on" || w == "off",
+                    "--warm-start: expected auto, on or off, got '" << w << "'");
+      warmStart = w == "on"    ? adapt::RemeshOptions::WarmStart::On
+                  : w == "off" ? adapt::RemeshOptions::WarmStart::Off
+                               : adapt::RemeshOptions::WarmStart::IfFits;
+    } else if (a == "--report")
       reportPath = value();
     else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
@@ -150,6 +165,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.name = in;
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
+  options.warmStart = warmStart;
   nlohmann::json resolved;
   {
     resolved = {{"in", in},
@@ -160,32 +176,36 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
                 {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
                 {"v", verbose},
+                {"warmStart", warmStart == adapt::RemeshOptions::WarmStart::On    ? "on"
+                              : warmStart == adapt::RemeshOptions::WarmStart::Off ? "off"
+                                                                                  : "auto"},
+                {"metField", metField},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
-  const auto tRead = Clock::now();
-  auto inputs = readInputs(in, sol);
-  const double secondsRead = since(tRead);
+  Stopwatch watch;
+  auto inputs = readInputs(in, sol, metField, verbose);
+  const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
-  const auto tWrite = Clock::now();
+  watch.restart();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
-  const double secondsWrite = since(tWrite);
+  const double secondsWrite = watch.seconds();
   if (!reportPath.empty()) {
     try {
       nlohmann::json report = resolved;
       report["stats"] = meshStatsJson(r.stats);
       report["stats"]["clampedMetrics"] = r.clampedMetrics;
       report["stats"]["gradedMetrics"] = r.gradation.corrections;
+      report["stats"]["warmStarted"] = r.warmStarted;
+      report["stats"]["inputWithin10"] = r.inputWithin10;
       report["inVertices"] = inVertices;
       report["vertices"] = r.mesh.numVertices();
       report["triangles"] = r.mesh.numTriangles();
@@ -213,6 +233,8 @@ int runRemesh(const std::vector<std::string>& args) {
               << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
               << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
               << " collapses), validation " << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
+    std::cout << "ablmg remesh: " << (r.warmStarted ? "warm start" : "cold start (lattice)")
+              << ", input edges within 10 %: " << r.inputWithin10 << "\n";
   }
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, "

@@ -1,8 +1,8 @@
-# io/config tests: cli/config.cpp, cli/mesh_output.cpp and cli/problem_config.cpp are not in a
+# io/config tests: cli/config.cpp, cli/mesh_output.cpp, cli/problem_config.cpp and cli/parse_number.cpp are not in a
 # library, so test_io compiles them in.
 if(TARGET test_io)
   target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp
-                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp)
+                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp ${PROJECT_SOURCE_DIR}/cli/parse_number.cpp)
 endif()
 
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line
@@ -27,6 +27,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
                     remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
   ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+  # Numbers follow one rule on every command (cli/parse_number.hpp).
+  ablmg_cli_failure(remesh_fractional_verbosity "remesh: -v: expected an integer in \\[-1, 10\\], got '1.5'"
+                    remesh -in ${_data}/square.mesh -v 1.5 -out ${_out}/remesh_fractional_verbosity.mesh)
+  ablmg_cli_failure(remesh_nan_hmin "remesh: -hmin: expected a number, got 'nan'"
+                    remesh -in ${_data}/square.mesh -hmin nan -out ${_out}/remesh_nan_hmin.mesh)
   add_test(NAME cli.remesh_reports_post_pass
            COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
   set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
@@ -48,7 +53,7 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/truncated.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_both_bad.mesh)
   ablmg_cli_failure(remesh_missing_sol "no_such.sol: cannot open" remesh -in ${_data}/square.mesh -sol ${_data}/no_such.sol -out ${_out}/remesh_missing_sol.mesh)
   file(WRITE ${_out}/overlap.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
-                                  "Triangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 5 0\nEnd\n")
+                                  "Edges\n4\n1 2 1\n2 3 1\n3 4 1\n4 1 1\nTriangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 3 0\nEnd\n")
   ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh: " remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
   ablmg_cli_failure(remesh_invalid_mesh_bad_sol "nonspd.sol:13: tensor of vertex 5" remesh -in ${_out}/overlap.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_invalid_mesh_bad_sol.mesh)
   # Two boundary loops touching at vertex 3 (a valid mesh, but not a domain).
