@@ -1,6 +1,7 @@
 # Byte-identical outputs: the paper's four cases (`ablmg mesh`), a remesh of one of them
-# (`ablmg remesh`) and the second mesh of a small adaptive loop (`ablmg adapt`), each with the
-# command's default options, must hash (SHA-256 of the .mesh file: vertices, edges, triangles)
+# (`ablmg remesh`) and the second mesh of a small adaptive loop (`ablmg adapt`, its metric
+# options pinned: the mesher's are the command's defaults), each with the command's default
+# mesher options, must hash (SHA-256 of the .mesh file: vertices, edges, triangles)
 # to the values in tests/data/golden_mesh_hashes.txt. A change that is meant to change the
 # meshes regenerates that file with
 #   cmake -DABLMG=build/bin/ablmg -DSRC=. -DOUT=/tmp/golden -DUPDATE=ON -P tests/cli/check_golden.cmake.in
