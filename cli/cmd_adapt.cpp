@@ -12,7 +12,8 @@
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
 // per size below N1 (adapt::geometricSchedule); --target-vertices: cycle k targets N_k vertices
 // (the last N repeats when K exceeds the list).
-// --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
+// --p selects the Lp norm the metric is optimal for (default inf, FreeFem/BAMG's L∞ metric: the
+// H1-optimal grading at singular points; 2: L2).
 // --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
 // (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
 // meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
