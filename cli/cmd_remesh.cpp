@@ -56,6 +56,9 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see docs/method.md), long
+  --warm-start W   auto (default), on, off: seed the placement with the input's interior
+                   vertices (auto: when half of its edges are already within 10 % of unit
+                   length, e.g. a mesh remeshed to its own metric; see adapt/remesh.hpp)
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
@@ -105,6 +108,7 @@ int runRemesh(const std::vector<std::string>& args) {
   int verbose = 1, metField = 0;
   long long seed = 1;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
+  adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -137,7 +141,14 @@ int runRemesh(const std::vector<std::string>& args) {
       seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
       lattice = mesher::parseLatticeOrientation(value());
-    else if (a == "--report")
+    else if (a == "--warm-start") {
+      const std::string& w = value();
+      ABLMG_REQUIRE(w == "auto" || w == "on" || w == "off",
+                    "--warm-start: expected auto, on or off, got '" << w << "'");
+      warmStart = w == "on"    ? adapt::RemeshOptions::WarmStart::On
+                  : w == "off" ? adapt::RemeshOptions::WarmStart::Off
+                               : adapt::RemeshOptions::WarmStart::IfFits;
+    } else if (a == "--report")
       reportPath = value();
     else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
@@ -164,6 +175,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.name = in;
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
+  options.warmStart = warmStart;
   nlohmann::json resolved;
   {
     resolved = {{"in", in},
@@ -174,6 +186,9 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
                 {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
                 {"v", verbose},
+                {"warmStart", warmStart == adapt::RemeshOptions::WarmStart::On    ? "on"
+                              : warmStart == adapt::RemeshOptions::WarmStart::Off ? "off"
+                                                                                  : "auto"},
                 {"metField", metField},
                 {"hsiz", hsiz},
                 {"options", meshOptionsToJson(options.mesh)},
@@ -200,6 +215,8 @@ int runRemesh(const std::vector<std::string>& args) {
       report["stats"] = meshStatsJson(r.stats);
       report["stats"]["clampedMetrics"] = r.clampedMetrics;
       report["stats"]["gradedMetrics"] = r.gradation.corrections;
+      report["stats"]["warmStarted"] = r.warmStarted;
+      report["stats"]["inputWithin10"] = r.inputWithin10;
       report["inVertices"] = inVertices;
       report["vertices"] = r.mesh.numVertices();
       report["triangles"] = r.mesh.numTriangles();
@@ -227,6 +244,8 @@ int runRemesh(const std::vector<std::string>& args) {
               << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
               << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
               << " collapses), validation " << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
+    std::cout << "ablmg remesh: " << (r.warmStarted ? "warm start" : "cold start (lattice)")
+              << ", input edges within 10 %: " << r.inputWithin10 << "\n";
   }
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, "
