@@ -1,20 +1,18 @@
 #include "ablmg/adapt/transfer.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/core/point_locator.hpp"
 #include "ablmg/core/predicates.hpp"
 #include "ablmg/fem/p1_matrices.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::adapt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// A convex polygon of at most 9 vertices (a triangle clipped by three half-planes has ≤ 6).
 /// label[i] names the line the edge p[i] → p[i+1] lies on: −1 for the subject triangle's own
@@ -434,7 +432,7 @@ double integrate(const Mesh2& mesh, const Eigen::VectorXd& u) {
 std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& newMesh,
                                             std::span<const Eigen::VectorXd> fields, const TransferOptions& options,
                                             TransferStats* statsOut) {
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   requireFields(oldMesh, fields);
   ABLMG_REQUIRE(oldMesh.numTriangles() > 0 && newMesh.numTriangles() > 0, "transfer: a mesh has no triangle");
   TransferStats stats;
@@ -446,7 +444,7 @@ std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& n
     stats.absMassOld.push_back(integrate(oldMesh, fields[f].cwiseAbs()));
     stats.massNew.push_back(integrate(newMesh, out[f]));
   }
-  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  stats.seconds = watch.seconds();
   if (statsOut) *statsOut = std::move(stats);
   return out;
 }
