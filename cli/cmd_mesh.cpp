@@ -5,16 +5,18 @@
 // atomically and prints a one-line summary. Errors are exceptions: main() prints one line and
 // exits 1; outputs are written only after the mesh exists, so a failed run writes nothing.
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
+#include <limits>
 #include <cstdio>
 #include <iostream>
 
@@ -81,19 +83,9 @@ int runMesh(const std::vector<std::string>& args) {
     } else if (a == "--bubbles-only") {
       bubblesOnly = true;
     } else if (a == "--seed") {
-      const std::string& v = value();
-      std::size_t used = 0;
-      try {
-        seed = std::stoll(v, &used);
-      } catch (...) { used = 0; }
-      ABLMG_REQUIRE(used == v.size() && seed >= 0, "--seed: expected a non-negative integer, got '" << v << "'");
+      seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
     } else if (a == "--max-nodes") {
-      const std::string& v = value();
-      std::size_t used = 0;
-      try {
-        maxNodes = std::stoll(v, &used);
-      } catch (...) { used = 0; }
-      ABLMG_REQUIRE(used == v.size() && maxNodes > 0, "--max-nodes: expected a positive integer, got '" << v << "'");
+      maxNodes = parseInteger(value(), "mesh: --max-nodes", 1, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] == '-') {
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg mesh --help)");
     } else {
@@ -125,7 +117,7 @@ int runMesh(const std::vector<std::string>& args) {
 
   // 3. Mesh (or place the bubbles).
   noteCrowdedCorners(cfg.domain, *cfg.metric);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   Mesh2 mesh;
   std::vector<Metric2> metric;
   nlohmann::json stats;
@@ -140,7 +132,7 @@ int runMesh(const std::vector<std::string>& args) {
     metric = std::move(r.metric);
     stats = meshStatsJson(r.stats);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = watch.seconds();
 
   // 4. Outputs (atomic each); on failure remove the ones this run already wrote.
   std::vector<std::string> written;

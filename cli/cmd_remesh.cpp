@@ -9,9 +9,11 @@
 // its RemeshOptions, reads the files, calls it, writes the files and prints.
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -19,7 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -44,27 +46,17 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    input mesh after clamping; default 1.3 as MMG; -1 disables
   Node placement stops early on a quality plateau (plateauSteps = 10, plateauGain = 0.01; see
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
-  -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
+  -v N             verbosity, an integer in [-1, 10]: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write)
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
-                   metrics, see README), long
+                   metrics, see docs/method.md), long
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
 )";
-
-double parseNumber(const std::string& flag, const std::string& v) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(v, &used);
-  } catch (...) { used = 0; }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x), flag << ": expected a number, got '" << v << "'");
-  return x;
-}
 
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
@@ -112,15 +104,15 @@ int runRemesh(const std::vector<std::string>& args) {
     else if (a == "-out")
       out = value();
     else if (a == "-hmin")
-      hmin = parseNumber(a, value());
+      hmin = parseNumber(value(), "remesh: " + a);
     else if (a == "-hmax")
-      hmax = parseNumber(a, value());
+      hmax = parseNumber(value(), "remesh: " + a);
     else if (a == "-hgrad")
-      hgrad = parseNumber(a, value());
+      hgrad = parseNumber(value(), "remesh: " + a);
     else if (a == "-v")
-      verbose = int(parseNumber(a, value()));
+      verbose = int(parseInteger(value(), "remesh: " + a, -1, 10));
     else if (a == "--seed")
-      seed = (long long)parseNumber(a, value());
+      seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
       lattice = mesher::parseLatticeOrientation(value());
     else if (a == "--report")
@@ -143,7 +135,7 @@ int runRemesh(const std::vector<std::string>& args) {
   ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
                 "--report must not be the output mesh or .sol");
 
-  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and README "Speed"
+  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and docs/method.md
   options.hmin = hmin;
   options.hmax = hmax;
   options.hgrad = hgrad;  // -1 (any value < 0) is "off" for both
@@ -166,20 +158,18 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
-  const auto tRead = Clock::now();
+  Stopwatch watch;
   auto inputs = readInputs(in, sol);
-  const double secondsRead = since(tRead);
+  const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
-  const auto tWrite = Clock::now();
+  watch.restart();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
-  const double secondsWrite = since(tWrite);
+  const double secondsWrite = watch.seconds();
   if (!reportPath.empty()) {
     try {
       nlohmann::json report = resolved;

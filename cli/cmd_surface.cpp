@@ -19,8 +19,10 @@
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
 // files are written only once the mesh exists, each atomically.
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/io/picture.hpp"
@@ -33,7 +35,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -64,17 +66,6 @@ meshed with M2 = J^T M3 J (eq. 16) for the isotropic 3D size H (eq. 17), then ma
   --json R.json    report: options, counts, quality distribution, edge lengths, manifold check, times
   --seed N         placement seed (default 1)
 )";
-
-double parsePositive(const std::string& v, const std::string& what) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(v, &used);
-  } catch (...) { used = 0; }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x) && x > 0,
-                what << ": expected a positive number, got '" << v << "'");
-  return x;
-}
 
 /// The extension must match and the folder must exist — checked before the (long) meshing.
 void checkOutput(const std::string& path, const char* ext, const char* flag) {
@@ -183,7 +174,7 @@ int runSurface(const std::vector<std::string>& args) {
     } else if (a == "--surface") {
       name = value();
     } else if (a == "--h") {
-      h = parsePositive(value(), "surface: --h");
+      h = parsePositiveNumber(value(), "surface: --h");
     } else if (a == "-o") {
       meshPath = value();
     } else if (a == "--vtu") {
@@ -197,7 +188,7 @@ int runSurface(const std::vector<std::string>& args) {
     } else if (a == "--json") {
       jsonPath = value();
     } else if (a == "--seed") {
-      seed = std::llround(parsePositive(value(), "surface: --seed"));
+      seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] != '-' && configPath.empty()) {
       configPath = a;
     } else {
@@ -237,10 +228,10 @@ int runSurface(const std::vector<std::string>& args) {
   std::cout << "ablmg surface: options " << optionsEcho.dump() << "\n";
 
   // Mesh (u,v) with M2, map to 3D, measure.
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const mesher::MeshResult r = mesher::meshDomain(setup.surface->parameterDomain(), m2, setup.options);
   const mesher::SurfaceMesh s = mesher::mapToSurface(r.mesh, *setup.surface);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = watch.seconds();
   const mesher::MeshQuality q = mesher::surfaceQuality(s, m3);
   ABLMG_REQUIRE(q.valid, "surface: the 3D mesh is not a consistently oriented manifold: " << q.firstProblem);
   const std::vector<double> alpha = mesher::leeQuality(s, m3);

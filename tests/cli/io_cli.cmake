@@ -1,8 +1,8 @@
-# io/config tests: cli/config.cpp, cli/mesh_output.cpp and cli/problem_config.cpp are not in a
+# io/config tests: cli/config.cpp, cli/mesh_output.cpp, cli/problem_config.cpp and cli/parse_number.cpp are not in a
 # library, so test_io compiles them in.
 if(TARGET test_io)
   target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp
-                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp)
+                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp ${PROJECT_SOURCE_DIR}/cli/parse_number.cpp)
 endif()
 
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line
@@ -27,6 +27,11 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
   ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
                     remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
   ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+  # Numbers follow one rule on every command (cli/parse_number.hpp).
+  ablmg_cli_failure(remesh_fractional_verbosity "remesh: -v: expected an integer in \\[-1, 10\\], got '1.5'"
+                    remesh -in ${_data}/square.mesh -v 1.5 -out ${_out}/remesh_fractional_verbosity.mesh)
+  ablmg_cli_failure(remesh_nan_hmin "remesh: -hmin: expected a number, got 'nan'"
+                    remesh -in ${_data}/square.mesh -hmin nan -out ${_out}/remesh_nan_hmin.mesh)
   add_test(NAME cli.remesh_reports_post_pass
            COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
   set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli

@@ -1,4 +1,4 @@
-# `ablmg surface` (issue 10): the list of built-ins, small runs that must report a manifold
+# `ablmg surface`: the list of built-ins, small runs that must report a manifold
 # mesh and write their files (a built-in, and an expression surface from a config with the
 # shaded 3D picture), and failures — a bad surface name, a bad size, a degenerate
 # parametrisation, a wrong output extension, an unknown config key — each one error line,
