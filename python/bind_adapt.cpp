@@ -75,7 +75,7 @@ void bindAdapt(py::module_& m) {
         std::vector<Metric2> metric;
         {
           py::gil_scoped_release release;
-          metric = adapt::adaptMetric(mesh, values, targetVertices, o);
+          metric = adapt::adaptMetric(mesh, values, targetVertices, o).metric;
         }
         return ownedArray(std::move(metric));
       },
