@@ -165,6 +165,7 @@ py::array loopPoints(const BoundaryLoop& l) {
 
 const char* kRemeshDoc = R"(remesh(points, triangles, metric, boundary_edges=None, boundary_refs=None, *,
        hmin=None, hmax=None, hgrad=None, seed=None, lattice=None, options=None, domain=None) -> Mesh
+remesh(mesh, metric=None, **same keywords) -> Mesh
 
 Remeshes the domain covered by a triangle mesh so that edges have unit length in a
 per-vertex metric: the call a solver makes between two solves (adapt/remesh.hpp; what
@@ -186,6 +187,10 @@ per-vertex metric: the call a solver makes between two solves (adapt/remesh.hpp;
                   instead of the domain rebuilt from the mesh's boundary loops; the metric is
                   then used as given (hmin, hmax, hgrad must stay None), as the adaptive loop
                   of `ablmg adapt` does.
+
+The second form takes an ablmg.Mesh (e.g. from read_mesh) with everything it carries besides
+the arrays (corners, required vertices and edges, ridges, interface edges of a medit file) and
+its own metric unless one is given: what `ablmg remesh -in FILE` remeshes.
 
 The domain is the mesh's boundary loops (one outer loop, holes) with their refs; corners (ref
 changes, turns > 30 deg) are kept, other boundary nodes are placed anew. Returns a valid Mesh
@@ -460,8 +465,24 @@ default to MeshOptions('adapt').)",
          std::optional<double> hmin, std::optional<double> hmax, std::optional<double> hgrad,
          std::optional<long long> seed, std::optional<std::string> lattice, std::optional<mesher::MeshOptions> options,
          std::optional<Domain> domain) {
-        Mesh2 mesh = toMesh(points, triangles, edges, refs, true, "remesh");
-        std::vector<Metric2> metrics = toMetrics(metric, "metric", mesh.numVertices());
+        Mesh2 mesh;
+        std::vector<Metric2> metrics;
+        if (py::isinstance<PyMesh>(points)) {  // remesh(mesh, metric=None): every field of the Mesh
+          const PyMesh& in = points.cast<const PyMesh&>();
+          const py::handle given = !metric.is_none() ? metric : triangles;
+          ABLMG_REQUIRE(edges.is_none() && refs.is_none() && (metric.is_none() || triangles.is_none()),
+                        "remesh(mesh, metric): a Mesh carries its own triangles and boundary");
+          ABLMG_REQUIRE(!given.is_none() || !in.metric.empty(), "remesh: no metric given and the Mesh has none");
+          mesh = in.mesh;
+          metrics = given.is_none() ? in.metric : toMetrics(given, "metric", mesh.numVertices());
+          const MeshValidation v = mesh.validate();
+          ABLMG_REQUIRE(v.ok, "remesh: invalid mesh: " << v.firstProblem);
+        } else {
+          if (triangles.is_none() || metric.is_none())  // as a missing argument would
+            throw py::type_error("remesh: needs points, triangles and metric (or a Mesh), got None");
+          mesh = toMesh(points, triangles, edges, refs, true, "remesh");
+          metrics = toMetrics(metric, "metric", mesh.numVertices());
+        }
         adapt::RemeshOptions o;
         o.mesh = resolveOptions(options, "remesh", seed, lattice);
         o.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
@@ -495,10 +516,11 @@ default to MeshOptions('adapt').)",
                             {"meshing", r.secondsMeshing}};
         return wrap(std::move(r.mesh), std::move(r.metric), std::move(stats));
       },
-      kRemeshDoc, py::arg("points"), py::arg("triangles"), py::arg("metric"), py::arg("boundary_edges") = py::none(),
-      py::arg("boundary_refs") = py::none(), py::kw_only(), py::arg("hmin") = py::none(), py::arg("hmax") = py::none(),
-      py::arg("hgrad") = py::none(), py::arg("seed") = py::none(), py::arg("lattice") = py::none(),
-      py::arg("options") = py::none(), py::arg("domain") = py::none());
+      kRemeshDoc, py::arg("points"), py::arg("triangles") = py::none(), py::arg("metric") = py::none(),
+      py::arg("boundary_edges") = py::none(), py::arg("boundary_refs") = py::none(), py::kw_only(),
+      py::arg("hmin") = py::none(), py::arg("hmax") = py::none(), py::arg("hgrad") = py::none(),
+      py::arg("seed") = py::none(), py::arg("lattice") = py::none(), py::arg("options") = py::none(),
+      py::arg("domain") = py::none());
 }
 
 }  // namespace ablmg::python

@@ -13,8 +13,12 @@ def remesh_with_both(tmp_path, ablmg_bin, mesh, sol, flags, **kwargs):
     cli_out = tmp_path / "cli.mesh"
     subprocess.run([str(ablmg_bin), "remesh", "-in", str(mesh), "-sol", str(sol), "-out", str(cli_out), "-v", "-1",
                     *flags], check=True)
+    arrays = kwargs.pop("arrays", True)
     m = ablmg.read_mesh(str(mesh), str(sol))
-    r = ablmg.remesh(m.points, m.triangles, m.metric, m.boundary_edges, m.boundary_refs, **kwargs)
+    r = ablmg.remesh(m, **kwargs)
+    if arrays:  # the arrays alone give the same mesh for files without corners or required entities
+        a = ablmg.remesh(m.points, m.triangles, m.metric, m.boundary_edges, m.boundary_refs, **kwargs)
+        np.testing.assert_array_equal(a.points, r.points)
     py_out = tmp_path / "py.mesh"
     ablmg.write_mesh(str(py_out), r)
     return cli_out, py_out, r
@@ -44,6 +48,13 @@ def test_byte_identical_on_a_freefem_file(tmp_path, ablmg_bin):
     cli, py, r = remesh_with_both(tmp_path, ablmg_bin, src, sol, [])
     assert r.num_vertices > 100
     assert py.read_bytes() == cli.read_bytes()
+
+
+def test_byte_identical_with_corners_and_required_vertices(tmp_path, ablmg_bin):
+    """square.mesh has Corners and RequiredVertices sections: remesh(Mesh) keeps them as the CLI does."""
+    cli, py, r = remesh_with_both(tmp_path, ablmg_bin, DATA / "square.mesh", DATA / "square.sol", [], arrays=False)
+    assert py.read_bytes() == cli.read_bytes()
+    assert py.with_suffix(".sol").read_bytes() == cli.with_suffix(".sol").read_bytes()
 
 
 def test_medit_round_trip(tmp_path, square_mesh):
