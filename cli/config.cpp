@@ -343,6 +343,9 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       placement.erase("pairDistance");
     }
     applyBindings(placement, options.placement, placementBindings(), w / "placement");
+    try {
+      mesher::validate(options.placement);
+    } catch (const InputError& e) { ABLMG_REQUIRE(false, (w / "placement").str() << ": " << e.what()); }
   }
   if (j.contains("connect")) applyBindings(j["connect"], options.connect, connectBindings(), w / "connect");
   if (j.contains("improve")) {

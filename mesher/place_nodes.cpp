@@ -411,29 +411,36 @@ PlacementResult NodePlacer::output() {
   return std::move(result_);
 }
 
-void checkOptions(const PlacementOptions& options) {
-  ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
-                "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got "
-                    << options.timeStep << ", " << options.mass << ", " << options.damping);
-  ABLMG_REQUIRE(options.metricLag >= 0 && options.metricLag <= 0.5,
-                "placeNodes: metricLag must be in [0, 0.5] (metric units), got " << options.metricLag);
-  ABLMG_REQUIRE(options.finalRelaxSteps >= 0,
-                "placeNodes: finalRelaxSteps must be >= 0, got " << options.finalRelaxSteps);
-  ABLMG_REQUIRE(options.plateauSteps >= 0 && options.plateauGain >= 0,
-                "placeNodes: need plateauSteps >= 0 and plateauGain >= 0; got " << options.plateauSteps << ", "
-                                                                                << options.plateauGain);
-  ABLMG_REQUIRE(options.adjacencyRadius >= 1.5,
-                "placeNodes: adjacencyRadius must be >= 1.5 (force range), got " << options.adjacencyRadius);
-  ABLMG_REQUIRE(
-      options.defectPasses >= 0 && options.defectEvery >= 1 && options.defectShake >= 0 && options.defectShake <= 0.5,
-      "placeNodes: need defectPasses >= 0, defectEvery >= 1, defectShake in [0, 0.5]; got "
-          << options.defectPasses << ", " << options.defectEvery << ", " << options.defectShake);
-}
-
 }  // namespace
 
+void validate(const PlacementOptions& o) {
+  auto need = [](bool ok, const char* field, const char* rule, double value) {
+    ABLMG_REQUIRE(ok, "placement options: " << field << " must be " << rule << ", got " << value);
+  };
+  need(o.k0 > 0, "k0", "> 0", o.k0);
+  need(o.mass > 0, "mass", "> 0", o.mass);
+  need(o.damping >= 0, "damping", ">= 0", o.damping);
+  need(o.timeStep > 0, "timeStep", "> 0", o.timeStep);
+  need(o.adjacencyRadius >= 1.5, "adjacencyRadius", ">= 1.5 (the force's range)", o.adjacencyRadius);
+  need(o.adjacencyRefresh >= 1, "adjacencyRefresh", ">= 1", o.adjacencyRefresh);
+  need(o.maxSteps >= 0, "maxSteps", ">= 0", o.maxSteps);
+  need(o.tolerance >= 0, "tolerance", ">= 0", o.tolerance);
+  need(o.relativeTolerance >= 0, "relativeTolerance", ">= 0", o.relativeTolerance);
+  need(o.stallSteps >= 0, "stallSteps", ">= 0 (0 = off)", o.stallSteps);
+  need(o.plateauSteps >= 0, "plateauSteps", ">= 0 (0 = off)", o.plateauSteps);
+  need(o.plateauGain >= 0, "plateauGain", ">= 0", o.plateauGain);
+  need(o.finalRelaxSteps >= 0, "finalRelaxSteps", ">= 0", o.finalRelaxSteps);
+  need(o.metricLag >= 0 && o.metricLag <= 0.5, "metricLag", "in [0, 0.5] (metric units)", o.metricLag);
+  need(o.defectPasses >= 0, "defectPasses", ">= 0 (0 = off)", o.defectPasses);
+  need(o.defectEvery >= 1, "defectEvery", ">= 1", o.defectEvery);
+  need(o.defectShake >= 0 && o.defectShake <= 0.5, "defectShake", "in [0, 0.5] (metric units)", o.defectShake);
+  need(o.defectMinShare >= 0, "defectMinShare", ">= 0", o.defectMinShare);
+  need(o.maxNodes >= 1, "maxNodes", ">= 1", double(o.maxNodes));
+  need(o.threads >= 0, "threads", ">= 0 (0 = OpenMP's default)", o.threads);
+}
+
 PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
-  checkOptions(options);
+  validate(options);
   ThreadScope threads(options.threads);
   return NodePlacer(domain, metric, options).run();
 }

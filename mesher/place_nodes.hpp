@@ -20,15 +20,15 @@
 /// (adjacency.hpp), a full refresh when they are more than a quarter of all; plus a full
 /// refresh every adjacencyRefresh steps.
 ///
-/// Speed (issue 7; README "Speed" has the figures and commands): the dynamics parameters
-/// c = 0.35, Δt = 0.45 (were 1.0, 0.3) and the active set (bubble_system.hpp) make a constant
-/// metric converge (×100) in about 100 steps at 4·10³ nodes and about 220 at 5·10⁵; the
-/// 100× criterion instead of an absolute 1e-3 halves the steps again at 5·10⁵ nodes with the
-/// same edge-length statistics (99.7 % within ±10 %). On a loaded machine OpenMP's default
-/// busy-wait makes 2 threads far slower than 1; OMP_WAIT_POLICY=passive avoids that.
+/// The stop rules and schedules are placement_schedule.hpp's. Speed: the dynamics parameters
+/// c = 0.35, Δt = 0.45 and the active set (bubble_system.hpp) make a constant metric converge
+/// (×100) in about 100 steps at 4·10³ nodes and about 220 at 5·10⁵ (docs/benchmarks.md). On
+/// a loaded machine OpenMP's default busy-wait makes 2 threads far slower than 1;
+/// OMP_WAIT_POLICY=passive avoids that.
 ///
-/// Deterministic: same domain, metric and options (seed) ⇒ bit-identical result, for any
-/// number of threads (no floating reductions across threads; nothing random is drawn).
+/// Output: no two nodes share a point (node_set.hpp, coincidentNodes). Deterministic: same
+/// domain, metric and options ⇒ bit-identical result, for any number of threads (no floating
+/// reductions across threads; nothing random is drawn).
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"
 #include "ablmg/mesher/bubble_force.hpp"
@@ -47,12 +47,9 @@ struct PlacementOptions {
   /// units (bubble_system.hpp), where one pair has stiffness |f'(1)| = k0 and the semi-implicit
   /// Euler step is stable up to Δt ≈ 0.6 for a hexagonal packing; with the paper's values the
   /// disk cases of §4.3 reduced the largest force only ×3–5 in 400 steps (over-damped soft
-  /// modes, tiny steps). Swept on the four paper cases (disks + eq. 4) at a ×100 target:
-  /// (c, Δt) = (1, 0.3) 329–692 steps, (0.6, 0.45) 178–421, (0.4, 0.45) 99–210, (0.25, 0.3)
-  /// 179–355, with the same or better edge statistics. Between c = 0.3 and 0.5 (Δt = 0.45) the
-  /// figures move by about ±0.5 point from run to run of settings (the line refinement's ±10 %
-  /// figure: 89.7–90.7 %); c = 0.35 meets every §4.3/eq. (4) target of issue 9 (README table).
-  /// Set damping = 3.8429, timeStep = 0.02 for the paper's own run.
+  /// modes, tiny steps); c = 0.35, Δt = 0.45 converge in 100–210 steps on the four paper
+  /// cases with the same or better edge statistics (docs/benchmarks.md). Set damping = 3.8429,
+  /// timeStep = 0.02 for the paper's own run.
   double damping = 0.35;   ///< c of eq. (5) (paper §6: 3.8429, see above)
   double timeStep = 0.45;  ///< Δt of the forward-Euler step (paper §6: 0.02; dimensionless, see above)
   /// w of the pair force: eq. (8) (default, the paper's), or the eq. (3) averaged-metric
@@ -65,14 +62,13 @@ struct PlacementOptions {
   /// Convergence: stop when the residual (largest net force |f_i|_{M_i}, metric units; see
   /// bubble_system.hpp) has dropped below max(tolerance, relativeTolerance × initial residual),
   /// checked with every bubble awake, once the population has settled. The relative part is
-  /// the early-stopping knob of issue 7 (README "Speed": time vs quality table).
+  /// the early-stopping knob (docs/benchmarks.md: time against quality).
   double tolerance = 1e-3;
   double relativeTolerance = 1e-2;
   /// Stall rule (0 = off): stop when the residual has not halved within this many steps
-  /// (stats.stalled). The paper disks halve it every ≤ 60 steps and are unaffected; adaptive
-  /// metrics (a wave-front remesh to 10⁵ vertices: residual 2.2 → 0.8 and no further) stop
-  /// after ~170 steps with the quality they would have after 600 (ring metric at 4·10⁴ nodes:
-  /// 90.5 % of edges within ±10 % after 263 steps, 90.7 % after 576).
+  /// (stats.stalled). The paper disks halve it every ≤ 60 steps and are unaffected; metrics
+  /// from a solver may never settle, and stop with the quality they would have hundreds of
+  /// steps later.
   int stallSteps = 150;
   /// Quality plateau (0 = off): stop when the share of neighbour pairs within ±10 % of unit
   /// metric length (sampled every 10 steps; plateauSteps is rounded up to a multiple of 10)
@@ -80,44 +76,37 @@ struct PlacementOptions {
   /// not halved in as many (stats.qualityPlateau). Sampling starts
   /// once the population has settled or its last pass edited ≤ 0.2 % of the nodes (graded
   /// metrics keep editing a few per mille for hundreds of steps). The early-stopping knob for
-  /// graded metrics, whose residual may never settle. Off by default (a converged packing,
-  /// issue 3: the constant-metric disk would stop at ×65 instead of ×100). `ablmg remesh` uses
-  /// 10 steps and a gain of 1 point (README "Speed": time vs quality table), and so does the
-  /// adaptive loop since session 5 (adapt/adaptive_loop.hpp: a third less remesh time on the
-  /// wave front; the quality post-pass, improve.hpp, takes care of the worst triangles).
+  /// graded metrics, whose residual may never settle. Off by default (a converged packing:
+  /// the constant-metric disk would stop at ×65 instead of ×100). `ablmg remesh` and the
+  /// adaptive loop use 10 steps and a gain of 1 point (adapt/remesh.hpp, adaptive_loop.hpp).
   int plateauSteps = 0;
   /// When the stall or plateau rule fires fewer than this many steps after the last
   /// population edit or defect kick, the run goes on without edits until that many steps have
-  /// passed since it. Without it, the boundary-layer remesh (tanh((y − 0.5)/0.01), cycle 6,
-  /// -hgrad -1) stalled one step after a pass that had inserted and deleted ~550 nodes each.
+  /// passed since it (a graded remesh can stall one step after a pass of hundreds of edits).
   int finalRelaxSteps = 10;
   double plateauGain = 0.002;  ///< share gain (0.002 = 0.2 point) that counts as progress
   /// A bubble's metric is evaluated again once it has moved this far (metric units) from where
   /// it was last evaluated; the output metrics are exact. Under a background mesh the
-  /// evaluation (point location + log-Euclidean interpolation) is ~25 % of a dynamics step:
-  /// 0.1 instead of 0.05 made the ring remesh 15 % faster with the same edge statistics.
+  /// evaluation (point location + log-Euclidean interpolation) is ~25 % of a dynamics step.
   double metricLag = 0.1;
   /// Defect annealing (defects.hpp): once the population has settled, up to defectPasses
   /// passes, defectEvery steps apart, kick the lattice defects (nodes of degree ≠ 6 in their
   /// metric's Voronoi cell) and their neighbours by defectShake metric units; the run then
   /// converges as before. Skipped when at most defectMinShare of the interior nodes are
-  /// defects (the constant disk: 3.6 %, boundary dislocations that stay; forced, 6 passes gave
-  /// 96.9 → 97.0 % for ×2.7 steps). Measured on the paper disks (damping 0.33 / 0.35 / 0.37),
-  /// edges within ±10 %: ring 88.5 / 87.3 / 88.5 → 91.1 / 90.8 / 91.3 %, line 90.5 / 90.3 /
-  /// 90.3 → 92.9 / 92.2 / 92.6 %, eq. (4) 90.7 / 90.8 / 90.7 → 91.8 / 90.9 / 90.7 %; steps
-  /// ring 244 / 182 / 257 → 404 / 273 / 394, placement ×2.3 on the small disks; the 84k-node
-  /// ring (examples/configs/speed_ring_84k.json) 91.8 → 93.2 % for +11 % placement time.
-  /// Runs that stop on the quality plateau before the population settles (`ablmg remesh` of
-  /// the ring benchmark) are unchanged. 0 = off.
+  /// defects (the constant disk: boundary dislocations that stay). On the paper disks it
+  /// adds 1–3 points of edges within ±10 % for about ×1.5 steps (docs/benchmarks.md). Runs
+  /// that stop on the quality plateau before the population settles are unchanged. 0 = off.
   int defectPasses = 6;
   int defectEvery = 20;      ///< steps between passes (the last one relaxes to convergence)
-  double defectShake = 0.3;  ///< kick, metric units (0.4 melts the packing: ring 86 %)
+  double defectShake = 0.3;  ///< kick, metric units, in [0, 0.5] (0.4 already melts the packing)
   double defectMinShare = 0.05;
   long maxNodes = 50'000'000;  ///< refuse (InputError, before allocating) if the estimate N* exceeds this
   std::uint64_t seed = 1;      ///< for any randomised choice; same seed, same nodes
   int threads = 0;             ///< 0 = OpenMP default
-  bool bubblesOnly = false;    ///< informational: callers that only want the packing
-  /// Warm start (issue 11): interior seed positions, e.g. the previous mesh's vertices in an
+  /// Not read by placeNodes: a request to callers that mesh (`ablmg mesh` then writes the
+  /// packing, the bubbles over the domain, instead of connecting it).
+  bool bubblesOnly = false;
+  /// Warm start: interior seed positions, e.g. the previous mesh's vertices in an
   /// adaptive loop; those that fit the metric's spacing replace lattice points (empty = cold).
   /// The relative target then refers to max(initial residual, 0.5), a fresh lattice's typical
   /// initial residual, not to the warm packing's own (already small) one.
@@ -156,9 +145,15 @@ struct PlacementResult {
   PlacementStats stats;
 };
 
+/// Throws InputError "placement options: <field> ..." naming the field and its value: every
+/// count and tolerance ≥ 0, k0, mass, timeStep > 0, threads ≥ 0 (0 = OpenMP's default), the
+/// ranges documented above. placeNodes() runs it; configuration readers run it at read time.
+void validate(const PlacementOptions& options);
+
+/// Places the nodes (see above); options are validate()d first.
 PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {});
 
-/// Issue 3's packing figure: the share of interior nodes whose nearest neighbour in the
+/// The packing figure: the share of interior nodes whose nearest neighbour in the
 /// adjacency lists is at a metric distance (eq. 3, averaged tensor) in [lo, hi]; a unit
 /// hexagonal packing has every node at 1. 1 when there is no interior node. O(Σ list sizes).
 double nearestNeighbourShare(const PlacementResult& result, double lo = 0.85, double hi = 1.15);

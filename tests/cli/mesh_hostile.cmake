@@ -18,6 +18,15 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(bad_improve "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"improve\": {\"qThreshold\": 1.5}}}")
   ablmg_cli_failure(config_bad_improve "bad_improve.json: options.improve: improve options: qThreshold must be in \\(0, 1\\], got 1.5"
                     mesh ${_hdir}/bad_improve.json -o ${_hdir}/bad_improve.mesh)
+  # Placement options are validated when the config is read, naming the file and the key.
+  foreach(bad "k0;0;> 0" "threads;-1;>= 0" "tolerance;-1e-3;>= 0" "defectShake;0.7;in \\[0, 0.5\\]")
+    list(GET bad 0 _key)
+    list(GET bad 1 _val)
+    list(GET bad 2 _rule)
+    ablmg_hostile_config(bad_${_key} "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"${_key}\": ${_val}}}}")
+    ablmg_cli_failure(config_bad_placement_${_key} "bad_${_key}.json: options.placement: placement options: ${_key} must be ${_rule}"
+                      mesh ${_hdir}/bad_${_key}.json -o ${_hdir}/bad_${_key}.mesh)
+  endforeach()
   ablmg_cli_failure(hostile_max_nodes "more than maxNodes = 1000" mesh ${_hdir}/tiny.json --max-nodes 1000 -o ${_hdir}/tiny_max_nodes.mesh)
   ablmg_hostile_config(selfx "{\"domain\": {\"loops\": [[[0,0],[1,1],[1,0],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
   ablmg_cli_failure(hostile_self_intersecting "selfx.json: domain.loops: .*self-intersecting or touching boundary" mesh ${_hdir}/selfx.json -o ${_hdir}/selfx.mesh)
