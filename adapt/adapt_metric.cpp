@@ -1,18 +1,15 @@
 // The mesher-free steps of the loop (adaptive_loop.hpp): metricQuality() and adaptMetric().
-// Kept apart from runAdaptiveLoop() so that they link and are tested without the mesher.
+// Kept apart from runAdaptiveLoop(): they run no mesher and are tested on their own.
 #include "ablmg/adapt/adaptive_loop.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
+#include "ablmg/mesher/quality.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::adapt {
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
 
 QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics) {
   ABLMG_REQUIRE(long(metrics.size()) == long(mesh.numVertices()),
@@ -24,10 +21,7 @@ QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics
   for (int t = 0; t < mesh.numTriangles(); ++t) {
     const auto& tri = mesh.triangles[t];
     const Metric2 m = (1.0 / 3.0) * (metrics[tri[0]] + metrics[tri[1]] + metrics[tri[2]]);
-    const Vec2 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
-    const double areaM = 0.5 * cross(b - a, c - a) * std::sqrt(m.det());
-    const double l2 = m.squaredLength(b - a) + m.squaredLength(c - b) + m.squaredLength(a - c);
-    const double qt = 4 * std::sqrt(3.0) * areaM / l2;
+    const double qt = mesher::triangleQuality(mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]], m);
     sum += qt;
     q.min = std::min(q.min, qt);
   }
@@ -35,18 +29,20 @@ QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics
   return q;
 }
 
-std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
-                                 const AdaptOptions& options, double* tRecover, double* tMetric,
-                                 GradationStats* gradation) {
-  const auto t0 = Clock::now();
+AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
+                          const AdaptOptions& options) {
+  Stopwatch watch;
   const auto hessians = recoverHessians(mesh, u, options.hessian);
-  if (tRecover) *tRecover = since(t0);
-  return metricFromRecovered(mesh, hessians, targetVertices, options, tMetric, gradation);
+  const double secondsRecover = watch.seconds();
+  AdaptedMetric r = metricFromRecovered(mesh, hessians, targetVertices, options);
+  r.secondsRecover = secondsRecover;
+  return r;
 }
 
-std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                         const AdaptOptions& options, double* tMetric, GradationStats* gradation) {
-  const auto t0 = Clock::now();
+AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
+                                  const AdaptOptions& options) {
+  Stopwatch watch;
+  AdaptedMetric r;
   MetricOptions mo = options.metric;
   mo.targetVertices = targetVertices;
   if (!std::isfinite(mo.hmax)) {  // keep a few elements across the domain where H ≈ 0
@@ -57,19 +53,19 @@ std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hess
     }
     mo.hmax = std::max(0.25 * (hi - lo).norm(), 2 * mo.hmin);
   }
-  auto metric = metricFromHessians(mesh, hessians, mo);
+  auto& metric = r.metric;
+  metric = metricFromHessians(mesh, hessians, mo);
   if (options.hgrad > 1) {
     GradationOptions go;
     go.hgrad = options.hgrad;
-    const auto gs = limitGradation(mesh, metric, go);
-    if (gradation) *gradation = gs;
+    r.gradation = limitGradation(mesh, metric, go);
     // Gradation only refines: restore the complexity by a uniform rescale (shape kept).
     const double c = metricComplexity(mesh, metric), target = complexityForVertices(targetVertices);
     const double s = target / c;
     for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
   }
-  if (tMetric) *tMetric = since(t0);
-  return metric;
+  r.secondsMetric = watch.seconds();
+  return r;
 }
 
 }  // namespace ablmg::adapt

@@ -3,18 +3,13 @@
 #include "ablmg/adapt/convergence.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/stopwatch.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::adapt {
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
-
 void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(!o.targetVertices.empty(), "adapt options: targetVertices is empty");
   for (std::size_t k = 0; k < o.targetVertices.size(); ++k)
@@ -28,6 +23,28 @@ void validate(const AdaptOptions& o) {
   MetricOptions m = o.metric;
   m.targetVertices = o.targetVertices.front();
   validate(m);
+}
+
+std::vector<double> geometricSchedule(double finalVertices, const ScheduleOptions& o) {
+  ABLMG_REQUIRE(std::isfinite(finalVertices) && finalVertices >= 10 && finalVertices <= 1e9,
+                "adapt schedule: final vertices must be in [10, 1e9] (got " << finalVertices << ")");
+  ABLMG_REQUIRE(std::isfinite(o.startVertices) && o.startVertices >= 10,
+                "adapt schedule: startVertices must be >= 10 (got " << o.startVertices << ")");
+  ABLMG_REQUIRE(std::isfinite(o.growth) && o.growth > 1.01 && o.growth <= 100,
+                "adapt schedule: growth must be in (1.01, 100] (got " << o.growth << ")");
+  ABLMG_REQUIRE(o.passes >= 1 && o.passes <= 20, "adapt schedule: passes must be in 1..20 (got " << o.passes << ")");
+  // Backwards from N by the growth factor, so that the last steps have the full ratio; the
+  // first size lies in [N_0, growth · N_0) (or is N itself when N ≤ N_0).
+  const int steps = finalVertices > o.startVertices
+                        ? int(std::floor(std::log(finalVertices / o.startVertices) / std::log(o.growth) + 1e-9))
+                        : 0;
+  std::vector<double> sizes;
+  for (int k = steps; k >= 1; --k) sizes.push_back(std::round(finalVertices / std::pow(o.growth, k)));
+  sizes.push_back(finalVertices);
+  std::vector<double> out;
+  for (double n : sizes)
+    for (int k = 0; k < (n < o.passesUpTo ? o.passes : 1); ++k) out.push_back(n);
+  return out;
 }
 
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options) {
@@ -75,9 +92,9 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   AdaptReport report;
-  auto t0 = Clock::now();
+  Stopwatch watch;
   mesher::MeshResult current = uniformMesh(problem.domain, target(0), options.mesh);
-  double tMesh = since(t0);
+  double tMesh = watch.seconds();
   for (int k = 0; k < cycles; ++k) {
     CycleReport row;
     row.cycle = k;
@@ -90,9 +107,9 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.qMean = q.mean;
     row.qMin = q.min;
 
-    t0 = Clock::now();
+    watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
-    row.tSolve = since(t0);
+    row.tSolve = watch.seconds();
     const fem::ErrorReport err = problem.exact
                                      ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
                                      : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
@@ -107,20 +124,21 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     report.stoppedEarly = reached && k + 1 < cycles;
     const bool last = k + 1 == cycles || reached;
     // Recovered Hessians: the error estimate of every cycle, and the next metric.
-    t0 = Clock::now();
+    watch.restart();
     const auto hessians =
         recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
-    row.tRecover = since(t0);
+    row.tRecover = watch.seconds();
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
-      GradationStats gs;
-      next = metricFromRecovered(current.mesh, hessians, target(k + 1), options, &row.tMetric, &gs);
-      row.gradationSweeps = gs.sweeps;
+      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(k + 1), options);
+      next = std::move(a.metric);
+      row.tMetric = a.secondsMetric;
+      row.gradationSweeps = a.gradation.sweeps;
     }
     report.cycles.push_back(row);
     if (onCycle) onCycle(CycleData{report.cycles.back(), current.mesh, current.metric, sol.u, err, next});
     if (last) break;
-    t0 = Clock::now();
+    watch.restart();
     mesher::MeshOptions meshOptions = options.mesh;
     if (options.warmStart) {
       std::vector<char> onBoundary(std::size_t(current.mesh.numVertices()), 0);
@@ -130,30 +148,36 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
           meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
     }
     current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
-    tMesh = since(t0);
+    tMesh = watch.seconds();
   }
 
   const int n = int(report.cycles.size());
-  report.rateWindow = std::min(4, n);
-  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
+  // The convergence curve: the last cycle of each target size.
   std::vector<double> nv, l2, h1, li, le;
-  for (const auto& c : report.cycles) {
+  for (int k = 0; k < n; ++k) {
+    const auto& c = report.cycles[std::size_t(k)];
+    if (k + 1 < n && report.cycles[std::size_t(k) + 1].targetVertices == c.targetVertices) continue;
     nv.push_back(double(c.vertices));
     l2.push_back(c.l2);
     h1.push_back(c.h1);
     li.push_back(c.l2Interp);
     le.push_back(c.l2InterpEstimate);
   }
+  const int points = int(nv.size());
+  report.rateWindow = std::min(4, points);
+  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
   bool distinct = false;
-  for (int i = n - report.rateWindow + 1; i < n; ++i) distinct = distinct || nv[i] != nv[n - report.rateWindow];
+  for (int i = points - report.rateWindow + 1; i < points; ++i)
+    distinct = distinct || nv[i] != nv[points - report.rateWindow];
   const bool positive = std::all_of(le.end() - report.rateWindow, le.end(), [](double e) { return e > 0; });
-  if (n >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
-  if (n >= 2 && distinct && problem.exact) {
+  if (points >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
+  if (points >= 2 && distinct && problem.exact) {
     report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
     report.h1Rate = logLogSlope(nv, h1, report.rateWindow);
     report.l2InterpRate = logLogSlope(nv, li, report.rateWindow);
   }
-  report.errorsDecrease = n >= 2 && l2.back() < l2.front() && h1.back() < h1.front();
+  report.errorsDecrease = n >= 2 && report.cycles.back().l2 < report.cycles.front().l2 &&
+                          report.cycles.back().h1 < report.cycles.front().h1;
   return report;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// The adaptive solve loop (issue 11): solve → errors → recover → metric → remesh, per cycle.
+/// The adaptive solve loop: solve → errors → recover → metric → remesh, per cycle.
 ///
 ///   cycle k:  mesh_k ─ fem::solvePoisson ─▶ u_k ─ errors vs exact u ─▶ CycleReport
 ///             u_k ─ recoverHessians ─▶ H_k ─ metricFromHessians(N_{k+1}) [─ limitGradation]
@@ -39,30 +39,38 @@
 
 namespace ablmg::adapt {
 
+/// The default schedule of `ablmg adapt --vertices N`: from a coarse start to N, sizes growing
+/// geometrically, several adaptation passes at each size up to passesUpTo vertices. The coarse
+/// passes are cheap (the cost of a cycle is about linear in N, so all cycles below N cost about
+/// growth/(growth − 1) × the last one) and let the metric find thin features (a front of width
+/// 1/1000, a peak, a corner) before the vertices are spent: a uniform mesh of N_0 vertices cannot
+/// see a feature narrower than its size, the first adapted mesh sees it roughly, the second pass
+/// at the same N resolves it.
+struct ScheduleOptions {
+  double startVertices = 400;  ///< N_0 (≥ 10): the first size is in [N_0, growth · N_0), or N if N ≤ N_0
+  double growth = 2;           ///< N_{k+1} / N_k (> 1); the last size is N exactly
+  int passes = 2;              ///< adaptation passes per size (≥ 1) below passesUpTo
+  double passesUpTo = 1e4;     ///< sizes ≥ this get one pass
+};
+
+/// Targets N_k of the schedule ending at `finalVertices` (≥ 10): N_0, ..., N each repeated
+/// `passes` times while below passesUpTo; increasing, ends with finalVertices. Throws InputError
+/// naming the field for values out of range.
+std::vector<double> geometricSchedule(double finalVertices, const ScheduleOptions& options = {});
+
 struct AdaptOptions {
-  std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each)
+  std::vector<double> targetVertices{1000, 2000, 4000, 8000};  ///< N_k (> 0 each; geometricSchedule builds one)
   int cycles = 0;                                              ///< 0 = targetVertices.size(); more repeats the last N
   HessianMethod hessian = HessianMethod::LeastSquares;
   MetricOptions metric;  ///< p, norm, shapeBlend, hmin, hmax (∞: see above), anisotropy; targetVertices set per cycle
   double hgrad = 0;      ///< > 1: gradation (gradation.hpp); ≤ 0: off
-  /// The mesher's options. The loop's default turns the initial lattice so that one row of
+  /// The mesher's options for the loop. The initial lattice is turned so that one row of
   /// bubbles runs along each node's short-size direction (LatticeOrientation::ShortAxis, the
-  /// Hessian's steep eigenvector): at equal vertex count on the wave front (α = 20, p = 4,
-  /// 2·10³–1.1·10⁵ vertices) the H1 error falls from 0.98–1.01× to 0.87–0.96× FreeFem's and the
-  /// L2 error from 0.71–0.75× to 0.50–0.63× (README). The P1 gradient error on a triangle that is
-  /// equilateral in the metric still depends on its orientation; the bubble dynamics keeps the
-  /// orientation it starts from (the forces do not depend on it).
-  ///
-  /// Placement also stops on the quality plateau, as `ablmg remesh` does (plateauSteps 10,
-  /// plateauGain 0.01, mesher/place_nodes.hpp): metrics from a solver rarely let the bubble
-  /// residual settle. Wave front to 1.1·10⁵ vertices (compare_freefem's schedule, p = 4, shape
-  /// blend 0.25): remeshes 4.3 s instead of 6.4–6.8 s, errors 0–6 % higher (L2 0.64–0.71×,
-  /// H1 0.83–0.89× FreeFem's instead of 0.62–0.71×, 0.81–0.89×); plateauGain 0.002: 5.2–5.8 s
-  /// with the errors of the full run. The quality post-pass keeps q min ≥ 0.64 either way.
-  /// No defect annealing (mesher/defects.hpp) in the loop: it only runs when the population
-  /// settles before the plateau stop, so some cycles got it and others not, and where it ran
-  /// it did not help the FE error (lshape at 8k vertices: H1 0.0163 with it, 0.0152 without;
-  /// session 6); it exists for the edge-length statistics of `ablmg mesh`.
+  /// Hessian's steep eigenvector): the P1 gradient error on a metric-equilateral triangle depends
+  /// on its orientation, and the bubble dynamics keeps the orientation it starts from. Placement
+  /// stops on the quality plateau (plateauSteps 10, plateauGain 0.01, mesher/place_nodes.hpp),
+  /// since metrics from a solver rarely let the bubble residual settle. No defect annealing
+  /// (mesher/defects.hpp): it does not lower the FE error. Measured: docs/method.md.
   mesher::MeshOptions mesh = [] {
     mesher::MeshOptions m;
     m.placement.lattice.orientation = mesher::LatticeOrientation::ShortAxis;
@@ -106,7 +114,9 @@ struct CycleReport {
 
 struct AdaptReport {
   std::vector<CycleReport> cycles;
-  int rateWindow = 0;                               ///< cycles used by the fitted rates (last min(4, K))
+  /// Cycles used by the fitted rates: the last cycle of each target size (passes at one size are
+  /// not points of the convergence curve), the last min(4, sizes) of them.
+  int rateWindow = 0;
   double l2Rate = 0, h1Rate = 0, l2InterpRate = 0;  ///< log-log slopes vs vertices (NaN if < 2 cycles)
   double l2InterpEstimateRate = 0;                  ///< the same for l2InterpEstimate (known without exact u)
   bool errorsDecrease = false;                      ///< l2 and h1 fall from the first cycle to the last
@@ -149,15 +159,21 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 /// mesh_0: meshDomain with the uniform isotropic metric of N vertices.
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options = {});
 
+/// The metric for the next mesh and how it was made.
+struct AdaptedMetric {
+  std::vector<Metric2> metric;  ///< one per vertex of the mesh it was computed on
+  GradationStats gradation;     ///< of limitGradation (all zero when options.hgrad ≤ 1)
+  double secondsRecover = 0;    ///< Hessian recovery (adaptMetric only; 0 in metricFromRecovered)
+  double secondsMetric = 0;     ///< metric from the Hessians, bounds, gradation and rescale
+};
+
 /// M for the next mesh: recoverHessians → metricFromHessians(targetVertices) → gradation if
-/// options.hgrad > 1. Per vertex of `mesh`. Times (seconds) go to tRecover/tMetric if non-null.
-std::vector<Metric2> adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
-                                 const AdaptOptions& options, double* tRecover = nullptr, double* tMetric = nullptr,
-                                 GradationStats* gradation = nullptr);
+/// options.hgrad > 1, rescaled to the target complexity. Per vertex of `mesh`.
+AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
+                          const AdaptOptions& options);
 
 /// adaptMetric's second half, on Hessians already recovered (one per vertex of `mesh`).
-std::vector<Metric2> metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                         const AdaptOptions& options, double* tMetric = nullptr,
-                                         GradationStats* gradation = nullptr);
+AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
+                                  const AdaptOptions& options);
 
 }  // namespace ablmg::adapt

@@ -14,14 +14,14 @@
 ///    points and the fit is well-posed (QR with column pivoting: |R_55| / |R_00| ≥ 1e-6). A
 ///    patch failing that test only for being thin (aspect ratio ≳ 10³, as across a boundary
 ///    layer) is refitted in its principal frame, each axis scaled by its extent, before it is
-///    grown: the same least-squares quadratic, well-conditioned (session 7: a 32k-vertex
-///    tanhlayer mesh took 13 s of recovery with patches grown over hundreds of rings).
+///    grown: the same least-squares quadratic, well-conditioned (growing such a patch instead
+///    takes hundreds of rings across a layer: 13 s of recovery on a 32k-vertex tanh layer).
 ///  - DoubleRecovery: first the gradient at each vertex, from the same patch fit (polynomial
 ///    preserving recovery, Zhang & Naga, SIAM J. Sci. Comput. 26 (2005)), then the gradient of
 ///    each gradient component by the lumped L2 projection (area-weighted average of the P1
 ///    element gradients of the recovered field), symmetrised. Why not the area-weighted gradient
 ///    twice (the classic "double L2" recovery): it is exact for quadratics only on symmetric
-///    patches, and the brief requires exactness on unstructured meshes; the second pass only
+///    patches, and exactness is wanted on unstructured meshes; the second pass only
 ///    needs exactness for linear fields, which the L2 projection has on any patch, boundary
 ///    vertices included. It is smoother than LeastSquares (one more averaging) on noisy data.
 ///

@@ -38,7 +38,7 @@
 /// the H1 error of the L2 metric (p = 4) at equal N, and overshoots N at 10⁵ vertices
 /// (anisotropy ratios are squared). The adaptive loop therefore starts the bubble lattice with
 /// a row along each node's short-size direction (mesher::LatticeOrientation::ShortAxis), and
-/// then shapeBlend 0.25 pays: H1 0.83–0.89×, L2 0.64–0.71× FreeFem's on the wave front (README).
+/// then shapeBlend 0.25 pays: H1 0.82–0.91×, L2 0.62–0.74× FreeFem's on the wave front (docs/method.md).
 ///
 /// shapeBlend w (optional) replaces the norm's own shape by (|H|/√det|H|)^(1+w), unit
 /// determinant: w = 0 the Lp shape, w = 1 the H1 shape, w = ½ their log-Euclidean (geometric)

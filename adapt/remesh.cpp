@@ -2,16 +2,13 @@
 
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace ablmg::adapt {
 namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
 /// Clamps the sizes h1, h2 of each metric to [hmin, hmax] (directions kept; hmin = 0 means the
 /// smallest positive double). Returns how many metrics changed; the others are untouched.
 long clampSizes(std::vector<Metric2>& metrics, double hmin, double hmax) {
@@ -46,34 +43,34 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
     ABLMG_REQUIRE(metric[v].isSpd(), name << ": metric[" << v << "] (" << metric[v].m11() << ", " << metric[v].m12()
                                           << ", " << metric[v].m22() << ") is not positive definite");
   RemeshResult r;
-  auto t0 = Clock::now();
+  Stopwatch watch;
   if (options.inputCheck == BackgroundMetricField::MeshCheck::Validate) {
     const MeshValidation v = mesh.validate();
     ABLMG_REQUIRE(v.ok, name << ": invalid mesh: " << v.firstProblem);
-    r.secondsValidate = since(t0);
+    r.secondsValidate = watch.seconds();
   }
   // 1. Sizes clamped to [hmin, hmax].
-  t0 = Clock::now();
+  watch.restart();
   r.clampedMetrics = clampSizes(metric, options.hmin, options.hmax);
-  r.secondsClamp = since(t0);
+  r.secondsClamp = watch.seconds();
   // 2. Gradation: sizes grow by at most ≈ hgrad per unit metric length along the input edges.
-  t0 = Clock::now();
+  watch.restart();
   if (options.hgrad > 1) r.gradation = limitGradation(mesh, metric, {.hgrad = options.hgrad});
-  r.secondsGradation = since(t0);
+  r.secondsGradation = watch.seconds();
   // 3. The domain from the input's boundary.
-  t0 = Clock::now();
+  watch.restart();
   const Domain domain = domainFromMeshBoundary(mesh, name);
-  r.secondsDomain = since(t0);
+  r.secondsDomain = watch.seconds();
   // 4. The input mesh and metric as the background field (validated above or by the caller;
   // the clamp, gradation and domain do not change the mesh).
-  t0 = Clock::now();
+  watch.restart();
   const BackgroundMetricField field(std::move(mesh), std::move(metric),
                                     BackgroundMetricField::MeshCheck::AlreadyValidated);
-  r.secondsBackgroundField = since(t0);
+  r.secondsBackgroundField = watch.seconds();
   // 5. The new mesh.
-  t0 = Clock::now();
+  watch.restart();
   mesher::MeshResult m = mesher::meshDomain(domain, field, options.mesh);
-  r.secondsMeshing = since(t0);
+  r.secondsMeshing = watch.seconds();
   r.mesh = std::move(m.mesh);
   r.metric = std::move(m.metric);
   r.stats = m.stats;

@@ -49,9 +49,8 @@ struct RemeshOptions {
   /// mesh.placement.lattice.orientation (Axes; ShortAxis suits Hessian metrics, see
   /// AdaptOptions::mesh). Placement stops on the quality plateau (plateauSteps 10,
   /// plateauGain 0.01, mesher/place_nodes.hpp): graded metrics rarely let the residual settle.
-  /// No final relaxation after the stop (finalRelaxSteps 0; `ablmg mesh` runs 10): on the
-  /// scripts/bench_remesh.sh inputs its 10 steps cost 12 % of the time (ring 0.46 → 0.52 s,
-  /// wave 1.28 → 1.37 s) for +0.4 point of edges within ±10 % (90.6 → 91.0 %, 93.8 → 94.2 %).
+  /// No final relaxation after the stop (finalRelaxSteps 0; `ablmg mesh` runs 10): its 10 steps
+  /// cost 12 % of the remesh time for +0.4 point of edges within ±10 % (docs/method.md).
   mesher::MeshOptions mesh = [] {
     mesher::MeshOptions m;
     m.placement.plateauSteps = 10;

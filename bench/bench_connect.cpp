@@ -1,4 +1,4 @@
-// Benchmark (issue 9 / issue 7): ABLMG connection time against node count, 10⁴ … 10⁶, on
+// Benchmark: ABLMG connection time against node count, 10⁴ … 10⁶, on
 // the paper's radius-10 disk with its constant anisotropic metric (h1 = 2.5 h2, θ = π/4)
 // scaled to the requested count. The nodes are placed once per size outside the timed loop
 // (early-stopped placement, tolerance 1e-2). Not a test: run by hand,

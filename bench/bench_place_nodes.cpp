@@ -1,4 +1,4 @@
-// Benchmark (issue 3 / issue 7): bubble node placement time against node count, 10⁴ … 10⁶,
+// Benchmark: bubble node placement time against node count, 10⁴ … 10⁶,
 // on the paper's radius-10 disk with its constant anisotropic metric (h1 = 2.5 h2, θ = π/4)
 // scaled so that N* ≈ the requested count, plus the graded ring metric of §4.3 scaled the same
 // way. Not a test: run by hand,

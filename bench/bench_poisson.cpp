@@ -1,4 +1,4 @@
-// Benchmark (issue 5 / issue 7): P1 Poisson assembly + CHOLMOD solve time against unknowns,
+// Benchmark: P1 Poisson assembly + CHOLMOD solve time against unknowns,
 // 10⁴ … 10⁶, on a uniform mesh of the unit square ("smooth" manufactured solution, exact
 // Dirichlet data, load by the degree-5 rule). Not a test: run by hand,
 //   ./bench/bench_poisson --benchmark_counters_tabular=true

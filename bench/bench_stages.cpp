@@ -1,17 +1,18 @@
-// Benchmark suite of issue 7: every stage of the pipeline at one size, and the table.
+// Benchmark suite (scripts/bench.sh): every stage of the pipeline at one size, and the table.
 //
 //   bench_stages --triangles N --json OUT.json   one size, one process (so that the peak memory
 //                                                 is this size's): mesh, write, P1 solve
 //   bench_stages --table A.json B.json ... [--md OUT.md] [--json OUT.json]
 //                                                 the sizes side by side, with fitted exponents
 //
-// The case is the one of the README's speed table: the radius-10 disk with the constant
+// The case is the one of docs/benchmarks.md's stage table: the radius-10 disk with the constant
 // anisotropic metric h1 = 2.5 h2, θ = π/4, sized so that the mesh has about N triangles.
 // Stages: initial placement, dynamics (and per step), adjacency upkeep, population control,
 // ABLMG connection, validation (mesher::MeshResult stats), .mesh and .vtu writing, P1 assembly
 // and CHOLMOD solve of a manufactured problem on the mesh (fem "smooth"). The growth exponent
 // of a stage is the least-squares slope of log(time) against log(triangles) over the sizes,
 // and also between the two largest. scripts/bench.sh runs the whole suite.
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/fem/solve.hpp"
 #include "ablmg/fem/test_problems.hpp"
 #include "ablmg/io/medit.hpp"
@@ -23,7 +24,6 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -36,11 +36,8 @@
 #include <vector>
 
 using namespace ablmg;
-using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 int fail(const std::string& msg) {
   std::cerr << "bench_stages: " << msg << "\n"
@@ -56,20 +53,20 @@ nlohmann::json runSize(double triangles) {
   const Domain disk = Domain::disk({0, 0}, 10);
   const ConstantMetricField metric(Metric2::fromSizes(h1, h2, std::numbers::pi / 4));
 
-  auto t = Clock::now();
+  Stopwatch watch;
   const mesher::MeshResult r = mesher::meshDomain(disk, metric);
-  const double whole = since(t);
+  const double whole = watch.seconds();
   const auto& p = r.stats.placement;
   const auto& c = r.stats.connect;
 
   const std::string dir = std::filesystem::temp_directory_path() / ("bench_stages_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  t = Clock::now();
+  watch.restart();
   io::writeMesh(dir + "/m.mesh", r.mesh);
-  const double writeMesh = since(t);
-  t = Clock::now();
+  const double writeMesh = watch.seconds();
+  watch.restart();
   io::writeVtu(dir + "/m.vtu", r.mesh);
-  const double writeVtu = since(t);
+  const double writeVtu = watch.seconds();
   std::filesystem::remove_all(dir);
 
   const fem::PoissonSolution s = fem::solvePoisson(r.mesh, fem::makeProblem("smooth").poisson());

@@ -1,13 +1,17 @@
-// ablmg adapt: the adaptive solve loop (issue 11) on a library problem or on a problem of the
+// ablmg adapt: the adaptive solve loop on a library problem or on a problem of the
 // user's own (CONFIG.json: domain, κ, f, boundary data, optionally the exact solution), with reports.
 //
-//   ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
+//   ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json)
+//               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
+//                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
-// of its parameters. Cycle k targets N_k vertices (the last N repeats when K exceeds the list).
+// of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
+// per size below N1 (adapt::geometricSchedule); --target-vertices: cycle k targets N_k vertices
+// (the last N repeats when K exceeds the list).
 // --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
 // --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
 // (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
@@ -73,6 +77,8 @@ struct Args {
   std::string problem;  ///< --problem NAME
   std::map<std::string, double> params;
   adapt::AdaptOptions options;
+  double finalVertices = 0;  ///< --vertices N: the default schedule (adapt::geometricSchedule)
+  adapt::ScheduleOptions schedule;
   std::string outDir = "adapt_out";
   bool uniform = true, vtu = true, medit = false;
 };
@@ -105,6 +111,18 @@ Args parseArgs(const std::vector<std::string>& args) {
       while (std::getline(ss, item, ','))
         a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
       haveTargets = true;
+    } else if (key == "--vertices") {
+      a.finalVertices = parseNumber(value(), "adapt: --vertices");
+    } else if (key == "--start-vertices") {
+      a.schedule.startVertices = parseNumber(value(), "adapt: --start-vertices");
+    } else if (key == "--growth") {
+      a.schedule.growth = parseNumber(value(), "adapt: --growth");
+    } else if (key == "--passes") {
+      const double p = parseNumber(value(), "adapt: --passes");
+      ABLMG_REQUIRE(p >= 1 && p <= 20 && p == std::floor(p), "adapt: --passes must be an integer in 1..20, got " << p);
+      a.schedule.passes = int(p);
+    } else if (key == "--passes-up-to") {
+      a.schedule.passesUpTo = parseNumber(value(), "adapt: --passes-up-to");
     } else if (key == "--p") {
       a.options.metric.p = parseNumber(value(), "adapt: --p");
     } else if (key == "--norm") {
@@ -151,7 +169,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(false,
                     "adapt: unknown argument '"
                         << key
-                        << "' (valid: --problem --param --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                        << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
+                           "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
                            "--plateau-gain --uniform --vtu --medit --out-dir)");
     }
@@ -160,7 +179,10 @@ Args parseArgs(const std::vector<std::string>& args) {
                 "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
   ABLMG_REQUIRE(a.config.empty() || a.params.empty(),
                 "adapt: --param is for --problem NAME; a config gives \"params\"");
-  ABLMG_REQUIRE(haveTargets, "adapt: --target-vertices N1,N2,... is required");
+  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0,
+                "adapt: --vertices N (the default schedule) or --target-vertices N1,N2,... is required");
+  ABLMG_REQUIRE(!(haveTargets && a.finalVertices > 0), "adapt: give --vertices N or --target-vertices, not both");
+  if (a.finalVertices > 0) a.options.targetVertices = adapt::geometricSchedule(a.finalVertices, a.schedule);
   adapt::validate(a.options);
   return a;
 }
@@ -236,7 +258,9 @@ bool uniformFits(const Domain& domain) {
 }
 
 const char* kAdaptHelp =
-    R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json) [--cycles K] --target-vertices N1,N2,...
+    R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json)
+                   (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
+                    | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
@@ -248,8 +272,10 @@ fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.jso
    "problem": {"kappa": "1", "f": "expr", "dirichlet": {"1": "expr", "default": "expr"},
                "neumann": {"2": "expr"}, "exact": {"u": "expr", "ux": "expr", "uy": "expr"}}}
 (expressions in x, y; tags as the domain's; "exact" optional: without it the only error figure
-is est=, the L2 interpolation error estimated from the recovered Hessian; examples/configs/adapt_*.json). Cycle k targets N_k vertices
-(the last N repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
+is est=, the L2 interpolation error estimated from the recovered Hessian; examples/configs/adapt_*.json).
+--vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 2) at
+each size below N1 (default 10000); --target-vertices: cycle k targets N_k vertices (the last N
+repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
 --lattice: the initial bubble lattice has one row along each node's short-size direction
@@ -421,8 +447,8 @@ int runAdapt(const std::vector<std::string>& argv) {
     }
     curves.push_back(ul);
     curves.push_back(uh);
-    // What the adaptive curve pays for the finest uniform mesh's errors (issue 11's "reached with
-    // at least 10× fewer vertices"): log–log interpolation along the cycles.
+    // The vertices the adaptive curve needs for the finest uniform mesh's errors (how many times
+    // fewer vertices adaptivity needs): log–log interpolation along the cycles.
     std::vector<double> an, al2, ah1;
     for (const auto& r : report.cycles)
       if (r.vertices > 0 && r.l2 > 0 && r.h1 > 0 && std::isfinite(r.l2) && std::isfinite(r.h1)) {

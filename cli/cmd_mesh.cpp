@@ -9,12 +9,12 @@
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/mesher/mesher.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 
@@ -125,7 +125,7 @@ int runMesh(const std::vector<std::string>& args) {
 
   // 3. Mesh (or place the bubbles).
   noteCrowdedCorners(cfg.domain, *cfg.metric);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   Mesh2 mesh;
   std::vector<Metric2> metric;
   nlohmann::json stats;
@@ -140,7 +140,7 @@ int runMesh(const std::vector<std::string>& args) {
     metric = std::move(r.metric);
     stats = meshStatsJson(r.stats);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = watch.seconds();
 
   // 4. Outputs (atomic each); on failure remove the ones this run already wrote.
   std::vector<std::string> written;

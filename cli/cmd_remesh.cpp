@@ -12,6 +12,7 @@
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -19,7 +20,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -50,7 +50,7 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
-                   metrics, see README), long
+                   metrics, see docs/method.md), long
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
@@ -143,7 +143,7 @@ int runRemesh(const std::vector<std::string>& args) {
   ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
                 "--report must not be the output mesh or .sol");
 
-  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and README "Speed"
+  adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and docs/method.md
   options.hmin = hmin;
   options.hmax = hmax;
   options.hgrad = hgrad;  // -1 (any value < 0) is "off" for both
@@ -166,20 +166,18 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
-  const auto tRead = Clock::now();
+  Stopwatch watch;
   auto inputs = readInputs(in, sol);
-  const double secondsRead = since(tRead);
+  const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
-  const auto tWrite = Clock::now();
+  watch.restart();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
-  const double secondsWrite = since(tWrite);
+  const double secondsWrite = watch.seconds();
   if (!reportPath.empty()) {
     try {
       nlohmann::json report = resolved;

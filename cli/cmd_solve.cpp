@@ -30,7 +30,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -99,9 +98,11 @@ int runSolve(const std::vector<std::string>& args) {
   if (config.contains("solver")) {
     requireKeys(config["solver"], src + ": solver", {"ordering"});
     ordering = config["solver"].value("ordering", ordering);
-    ABLMG_REQUIRE(ordering == "geometric" || ordering == "cholmod",
-                  src << ": solver.ordering: '" << ordering << "' (valid: geometric, cholmod)");
-    options.ordering = ordering == "geometric" ? fem::Ordering::GeometricNestedDissection : fem::Ordering::Cholmod;
+    ABLMG_REQUIRE(ordering == "geometric" || ordering == "metis" || ordering == "cholmod",
+                  src << ": solver.ordering: '" << ordering << "' (valid: geometric, metis, cholmod)");
+    options.ordering = ordering == "geometric" ? fem::Ordering::GeometricNestedDissection
+                       : ordering == "metis"   ? fem::Ordering::Metis
+                                               : fem::Ordering::Cholmod;
   }
   std::string vtuPath = (base / "solution.vtu").string(), reportPath = (base / "report.json").string(), solPath;
   if (config.contains("output")) {

@@ -22,6 +22,7 @@
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/io/picture.hpp"
@@ -34,7 +35,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -238,10 +238,10 @@ int runSurface(const std::vector<std::string>& args) {
   std::cout << "ablmg surface: options " << optionsEcho.dump() << "\n";
 
   // Mesh (u,v) with M2, map to 3D, measure.
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const mesher::MeshResult r = mesher::meshDomain(setup.surface->parameterDomain(), m2, setup.options);
   const mesher::SurfaceMesh s = mesher::mapToSurface(r.mesh, *setup.surface);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double seconds = watch.seconds();
   const mesher::MeshQuality q = mesher::surfaceQuality(s, m3);
   ABLMG_REQUIRE(q.valid, "surface: the 3D mesh is not a consistently oriented manifold: " << q.firstProblem);
   const std::vector<double> alpha = mesher::leeQuality(s, m3);

@@ -23,7 +23,7 @@ namespace ablmg::cli {
 /// an unknown extension (before anything is written if called through checkOutputPath first).
 void writeMeshOutput(const std::string& path, const Domain& domain, const Mesh2& mesh,
                      const std::vector<Metric2>& metric);
-/// The fields that colour a mesh by how well it follows its metric (issue 9; ParaView): cell
+/// The fields that colour a mesh by how well it follows its metric (for ParaView): cell
 /// "quality" (q of mesher/quality.hpp, 1 = unit equilateral) and point "edge_length_min" /
 /// "edge_length_max" (the shortest and longest metric length, eq. (3), of the edges at the
 /// vertex; the target is 1, [1/√2, √2] the usual band). metric.size() == numVertices().

@@ -19,8 +19,8 @@
 //        count (twice the current one), interpolated from the current mesh,
 //   starting from a uniform isotropic metric. It prints one `Cycle k:` line per cycle, the
 //   fitted log-log rates over the last 4 cycles (optimal P1: L2 ~ N^-1, H1 ~ N^-1/2) and the
-//   ratio of our errors to the FreeFem++ 4.11 `adaptmesh` loop's on the same problem (issue 11:
-//   H1 0.0625 and L2 1.6e-4 at 11.8k vertices, 0.0222 and 2.1e-5 at 94.8k, interpolated
+//   ratio of our errors to the FreeFem++ 4.11 `adaptmesh` loop's on the same problem (measured
+//   with examples/compare_freefem: H1 0.0625 and L2 1.6e-4 at 11.8k vertices, 0.0222 and 2.1e-5 at 94.8k, interpolated
 //   log-log to our vertex counts). Exit status 1 if the errors do not decrease.
 //   The same loop with files (CSV, JSON, .vtu per cycle, PNGs) is `ablmg adapt --problem wavefront`.
 #include "ablmg/adapt/adaptive_loop.hpp"
@@ -71,7 +71,7 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-/// FreeFem++ adaptmesh reference (issue 11), log-log interpolated/extrapolated to n vertices.
+/// FreeFem++ adaptmesh reference (examples/compare_freefem), log-log interpolated/extrapolated to n vertices.
 double reference(double n, double e1, double e2) {
   const double n1 = 11.8e3, n2 = 94.8e3;
   const double slope = std::log(e2 / e1) / std::log(n2 / n1);

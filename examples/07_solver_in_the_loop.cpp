@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
       // RemeshOptions) instead (adapt/remesh.hpp): the domain is the mesh's boundary, and the
       // call clamps to [hmin, hmax] and grades as `ablmg remesh` does.
       const double next = o.n0 * std::pow(2.0, k + 1);
-      std::vector<Metric2> metric = adapt::metricFromRecovered(current.mesh, hessians, next, options);
+      std::vector<Metric2> metric = adapt::metricFromRecovered(current.mesh, hessians, next, options).metric;
       current = adapt::remesh(domain, current.mesh, std::move(metric), options.mesh);
     }
 

@@ -8,8 +8,14 @@
 /// ≈ 7 s for 1.4e10 factorisation flops, AMD ≈ 0.6 s for 3.3e10 flops; this ordering costs
 /// ≈ 0.4 s for 1.9e10 flops (a P1 mesh is planar: a straight cut gives an O(√n) separator).
 ///
-/// Each set of unknowns is cut at the median coordinate m of its longer bounding-box axis:
-/// lower = {c < m}, middle = {c = m}, upper = {c > m}. The separator is the middle plus the
+/// Each set of unknowns is cut at the median coordinate m along one direction: lower = {c < m},
+/// middle = {c = m}, upper = {c > m}. The direction (CutChoice::SmallestSeparator, the
+/// default) is the one of x, y, x + y, x − y whose cut has the smallest separator in the
+/// matrix graph: on an adapted mesh, whose vertices are dense and stretched along a layer or a
+/// front, the geometrically longer axis often cuts across the layer, through every one of its
+/// thin rows, and the factorisation then depends on the grading (tanh layer, 9.5·10⁴
+/// unknowns: see docs/benchmarks.md, "Solver ordering"). CutChoice::LongerAxis is the older
+/// rule (the longer bounding-box axis), kept for comparison. The separator is the middle plus the
 /// smaller of (upper vertices adjacent to lower) and (lower vertices adjacent to upper); on a
 /// structured grid it is exactly one grid line. Both sides are ordered recursively, then the
 /// separator (by id). Sets of ≤ `leafSize` unknowns are ordered by approximate minimum degree
@@ -22,9 +28,19 @@
 
 namespace ablmg::fem {
 
+enum class CutChoice {
+  SmallestSeparator,  ///< of x, y, x ± y: the cut with the fewest separator vertices (default)
+  LongerAxis          ///< across the longer side of the piece's bounding box
+};
+
 /// `A`: n × n with a symmetric pattern (both halves stored, compressed); `points`: n
 /// positions. Returns `perm` with perm[k] = the unknown placed k-th (a permutation of 0..n−1).
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
-                                           int leafSize = 500);
+                                           int leafSize = 500, CutChoice cut = CutChoice::SmallestSeparator);
+
+/// METIS' multilevel nested dissection (METIS_NodeND, default options) of A's graph (the
+/// diagonal ignored), for comparison: it needs no coordinates, but costs ≈ 10× our geometric
+/// ordering on this machine (docs/benchmarks.md, "Solver ordering"). Same contract as above.
+std::vector<int> metisNestedDissection(const Eigen::SparseMatrix<double>& A);
 
 }  // namespace ablmg::fem

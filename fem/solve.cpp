@@ -1,11 +1,10 @@
 #include "ablmg/fem/solve.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/fem/ordering.hpp"
 
 #include <Eigen/CholmodSupport>
-
-#include <chrono>
 
 // OpenBLAS's thread-count setter, if the BLAS loaded at run time is OpenBLAS (weak: null
 // otherwise, e.g. with the reference BLAS, which is single-threaded anyway).
@@ -21,10 +20,6 @@ constexpr int kBlasThreads = 2;
 
 void fixBlasThreads() {
   if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
@@ -43,22 +38,25 @@ void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
 }  // namespace
 
 Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const SolveOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const Eigen::Index n = system.A.rows();
   ABLMG_REQUIRE(n > 0, "solve: the system has no unknowns (every vertex is a Dirichlet vertex)");
   Cholesky llt;
   Eigen::VectorXd x;
   double orderingSeconds = 0;
-  if (options.ordering == Ordering::GeometricNestedDissection) {
-    ABLMG_REQUIRE(Eigen::Index(system.dofPoints.size()) == n, "solve: geometric ordering needs dofPoints ("
-                                                                  << system.dofPoints.size() << " for " << n
-                                                                  << " unknowns)");
-    const std::vector<int> order = geometricNestedDissection(system.A, system.dofPoints, options.leafSize);
+  if (options.ordering != Ordering::Cholmod) {
+    ABLMG_REQUIRE(
+        options.ordering == Ordering::Metis || Eigen::Index(system.dofPoints.size()) == n,
+        "solve: geometric ordering needs dofPoints (" << system.dofPoints.size() << " for " << n << " unknowns)");
+    const std::vector<int> order =
+        options.ordering == Ordering::Metis
+            ? metisNestedDissection(system.A)
+            : geometricNestedDissection(system.A, system.dofPoints, options.leafSize, options.cut);
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P{int(n)};  // old index → new index
     for (int k = 0; k < int(n); ++k) P.indices()[order[k]] = k;
     Eigen::SparseMatrix<double> Ap;
     Ap = system.A.twistedBy(P);
-    orderingSeconds = secondsSince(t0);
+    orderingSeconds = watch.seconds();
     llt.cholmod().nmethods = 1;
     llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;  // keep ours
     factorise(llt, Ap);
@@ -71,11 +69,12 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
   ABLMG_REQUIRE(llt.info() == Eigen::Success && x.allFinite(),
                 "solve: CHOLMOD's triangular solves failed (matrix " << n << "×" << n << ")");
   if (stats) {
-    stats->solveSeconds = secondsSince(t0);
+    stats->solveSeconds = watch.seconds();
     stats->orderingSeconds = orderingSeconds;
     stats->unknowns = int(n);
     stats->nonZeros = long(system.A.nonZeros());
     stats->factorNonZeros = llt.cholmod().lnz;
+    stats->factorFlops = llt.cholmod().fl;
     const double bn = system.b.norm();
     stats->residual = bn > 0 ? (system.A * x - system.b).norm() / bn : (system.A * x).norm();
   }
@@ -84,9 +83,9 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
 
 PoissonSolution solvePoisson(const Mesh2& mesh, const PoissonProblem& problem, const SolveOptions& options) {
   PoissonSolution sol;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const LinearSystem sys = assemble(mesh, problem);
-  sol.stats.assemblySeconds = secondsSince(t0);
+  sol.stats.assemblySeconds = watch.seconds();
   sol.stats.dirichletVertices = sys.numDirichletVertices;
   if (sys.A.rows() == 0) {  // every vertex Dirichlet: nothing to solve
     sol.u = sys.dirichletValues;

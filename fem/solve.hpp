@@ -7,6 +7,9 @@
 /// CHOLMOD's own METIS ordering costs more than the factorisation at 10⁶ unknowns. Measured
 /// on this 2-core machine, uniform mesh, 10⁶ unknowns, OpenBLAS: ≈ 0.5 s ordering + 3 s
 /// factorisation, against ≈ 7 s + 2.8 s with CHOLMOD's METIS and 0.6 s + 4.1 s with AMD.
+/// Its cuts are chosen by separator size in the graph, so the flops follow N and not the
+/// grading (≈ 10⁵ unknowns: 0.60, 0.89 and 0.13 GFlop on the uniform, wave-front and tanh-layer
+/// meshes, where the longer-axis rule took 0.57, 1.30 and 56; bench/bench_solve_graded.cpp).
 /// (CHOLMOD's supernodal kernels need an optimised BLAS: with Debian's reference BLAS the
 /// factorisation is ≈ 4× slower. Install libopenblas0-pthread.)
 ///
@@ -19,6 +22,7 @@
 /// or CHOLMOD reporting a non-positive pivot.
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/fem/assemble.hpp"
+#include "ablmg/fem/ordering.hpp"
 #include "ablmg/fem/poisson_problem.hpp"
 
 #include <Eigen/Core>
@@ -27,21 +31,24 @@ namespace ablmg::fem {
 
 enum class Ordering {
   GeometricNestedDissection,  ///< fem/ordering.hpp on LinearSystem::dofPoints (default)
+  Metis,                      ///< METIS_NodeND on the matrix graph (fem/ordering.hpp)
   Cholmod                     ///< CHOLMOD's default choice (AMD, then METIS if fill is high)
 };
 
 struct SolveOptions {
   Ordering ordering = Ordering::GeometricNestedDissection;
-  int leafSize = 500;  ///< pieces this small are ordered by AMD (geometric ordering only)
+  int leafSize = 500;                            ///< pieces this small are ordered by AMD (geometric ordering only)
+  CutChoice cut = CutChoice::SmallestSeparator;  ///< geometric ordering only
 };
 
 struct SolveStats {
   double assemblySeconds = 0;  ///< wall time of assemble()
-  double orderingSeconds = 0;  ///< wall time of the geometric ordering + permutation
+  double orderingSeconds = 0;  ///< wall time of our ordering (geometric or METIS) + permutation
   double solveSeconds = 0;     ///< wall time of ordering + factorisation + triangular solves
   int unknowns = 0;            ///< free vertices (size of A)
   long nonZeros = 0;           ///< stored non-zeros of A (both halves)
   double factorNonZeros = 0;   ///< non-zeros of the Cholesky factor L (CHOLMOD's lnz)
+  double factorFlops = 0;      ///< floating-point operations of the factorisation (CHOLMOD's fl)
   int dirichletVertices = 0;
   double residual = 0;  ///< ‖A x − b‖₂ / ‖b‖₂ of the computed solution (0 if b = 0)
 };

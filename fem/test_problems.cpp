@@ -12,24 +12,198 @@ namespace {
 
 using std::numbers::pi;
 
+/// The angle of (x, y) in [0, 2π): θ = 0 along the positive x axis, counter-clockwise.
+double angle(double x, double y) {
+  const double t = std::atan2(y, x);
+  return t < 0 ? t + 2 * pi : t;
+}
+
+/// (−1,1)² without the sector ω < θ < 2π (θ = angle above), vertices counter-clockwise from the
+/// corner at the origin, segments tagged 1, 2, ... in order. ω ∈ (π, 2π).
+Domain wedgeDomain(double omega) {
+  BoundaryLoop loop;
+  loop.points = {Vec2(0, 0), Vec2(1, 0)};
+  const Vec2 corners[] = {Vec2(1, 1), Vec2(-1, 1), Vec2(-1, -1), Vec2(1, -1)};
+  const double cornerAngles[] = {pi / 4, 3 * pi / 4, 5 * pi / 4, 7 * pi / 4};
+  for (int k = 0; k < 4; ++k)
+    if (cornerAngles[k] < omega - 1e-12) loop.points.push_back(corners[k]);
+  const Vec2 d(std::cos(omega), std::sin(omega));
+  Vec2 end = d / d.cwiseAbs().maxCoeff();  // the ray θ = ω meets the square's boundary here
+  for (int k = 0; k < 2; ++k)
+    if (std::abs(end[k] - std::round(end[k])) < 1e-12) end[k] = std::round(end[k]);  // exact corners (ω = 3π/2)
+  if ((end - loop.points.back()).norm() > 1e-12) loop.points.push_back(end);
+  for (std::size_t k = 0; k < loop.points.size(); ++k) loop.tags.push_back(int(k) + 1);
+  return Domain(loop);
+}
+
+/// r^a sin(aθ) (harmonic), θ ∈ [0, 2π), and its gradient a r^(a−1) (sin((a−1)θ), cos((a−1)θ)).
+double cornerU(double a, double x, double y) {
+  const double r = std::hypot(x, y);
+  return r == 0 ? 0.0 : std::pow(r, a) * std::sin(a * angle(x, y));
+}
+Vec2 cornerGrad(double a, double x, double y) {
+  const double r = std::hypot(x, y), t = angle(x, y);
+  return Vec2(std::sin((a - 1) * t), std::cos((a - 1) * t)) * (a * std::pow(r, a - 1));
+}
+
+/// atan(α(r − r0)), r = |x − c|: value, gradient and −Δ (u_r = α/(1+s²), u_rr = −2α²s/(1+s²)², s = α(r − r0)).
+struct Front {
+  double a, xc, yc, r0;
+  double u(double x, double y) const { return std::atan(a * (std::hypot(x - xc, y - yc) - r0)); }
+  Vec2 grad(double x, double y) const {
+    const double r = std::hypot(x - xc, y - yc), s = a * (r - r0);
+    return Vec2(x - xc, y - yc) * (a / (1 + s * s) / r);
+  }
+  double f(double x, double y) const {
+    const double r = std::hypot(x - xc, y - yc), s = a * (r - r0), d = 1 + s * s;
+    return -(-2 * a * a * s / (d * d) + a / d / r);
+  }
+};
+
+/// exp(−α ρ²), ρ = |x − c|: value, gradient and −Δ = u (4α − 4α²ρ²).
+struct Peak {
+  double a, xc, yc;
+  double u(double x, double y) const { return std::exp(-a * ((x - xc) * (x - xc) + (y - yc) * (y - yc))); }
+  Vec2 grad(double x, double y) const { return Vec2(x - xc, y - yc) * (-2 * a * u(x, y)); }
+  double f(double x, double y) const {
+    const double r2 = (x - xc) * (x - xc) + (y - yc) * (y - yc);
+    return std::exp(-a * r2) * (4 * a - 4 * a * a * r2);
+  }
+};
+
+void buildWavefront(TestProblem& p) {
+  // Mitchell (2013), wave front: u = atan(α(r − r0)).
+  const Front w{p.params["alpha"], p.params["xc"], p.params["yc"], p.params["r0"]};
+  ABLMG_REQUIRE(w.a > 0, "problem 'wavefront': alpha = " << w.a << " must be positive");
+  p.formula = "atan(alpha*(sqrt((x-xc)^2+(y-yc)^2)-r0))";
+  p.u = [=](double x, double y) { return w.u(x, y); };
+  p.grad = [=](double x, double y) { return w.grad(x, y); };
+  p.f = [=](double x, double y) { return w.f(x, y); };
+}
+
+void buildPeak(TestProblem& p) {
+  // Mitchell (2013), peak: u = exp(−α ρ²).
+  const Peak k{p.params["alpha"], p.params["xc"], p.params["yc"]};
+  ABLMG_REQUIRE(k.a > 0, "problem 'peak': alpha = " << k.a << " must be positive");
+  p.formula = "exp(-alpha*((x-xc)^2+(y-yc)^2))";
+  p.u = [=](double x, double y) { return k.u(x, y); };
+  p.grad = [=](double x, double y) { return k.grad(x, y); };
+  p.f = [=](double x, double y) { return k.f(x, y); };
+}
+
+void buildCorner(TestProblem& p, double omega) {
+  // Mitchell (2013), reentrant corner: u = r^(π/ω) sin(πθ/ω), harmonic (f = 0).
+  const double a = pi / omega;
+  p.u = [=](double x, double y) { return cornerU(a, x, y); };
+  p.grad = [=](double x, double y) { return cornerGrad(a, x, y); };
+  p.f = [](double, double) { return 0.0; };
+}
+
+void buildLineSingularity(TestProblem& p) {
+  // Mitchell (2013), interior line singularity on (−1,1)²: u = cos(πy/2) + s^α for
+  // s = x − β(y + 1) > 0 (cos(πy/2) elsewhere); −Δu = (π²/4) cos(πy/2) − α(α−1)(1+β²) s^(α−2).
+  const double a = p.params["alpha"], b = p.params["beta"];
+  ABLMG_REQUIRE(a > 1, "problem 'linesing': alpha = " << a << " must be > 1 (u in H1 with a load in L1)");
+  p.domain = Domain::rectangle(-1, -1, 1, 1);
+  p.formula = "cos(pi*y/2)+max(x-beta*(y+1),0)^alpha";
+  p.u = [=](double x, double y) {
+    const double s = x - b * (y + 1);
+    return std::cos(pi * y / 2) + (s > 0 ? std::pow(s, a) : 0.0);
+  };
+  p.grad = [=](double x, double y) -> Vec2 {
+    const double s = x - b * (y + 1), g = s > 0 ? a * std::pow(s, a - 1) : 0.0;
+    return Vec2(g, -pi / 2 * std::sin(pi * y / 2) - b * g);
+  };
+  p.f = [=](double x, double y) {
+    const double s = x - b * (y + 1);
+    return pi * pi / 4 * std::cos(pi * y / 2) - (s > 0 ? a * (a - 1) * (1 + b * b) * std::pow(s, a - 2) : 0.0);
+  };
+}
+
+void buildMultiple(TestProblem& p) {
+  // Mitchell (2013), multiple difficulties on the L-shape (ω = 3π/2): u = r^(2/3) sin(2θ/3)
+  // + exp(−α_p ρ_p²) + atan(α_w(r_w − r0)) + exp(−(1 + y)/ε) (a boundary layer along y = −1).
+  const Peak k{p.params["alpha_p"], p.params["xp"], p.params["yp"]};
+  const Front w{p.params["alpha_w"], p.params["xw"], p.params["yw"], p.params["r0"]};
+  const double e = p.params["epsilon"], a = 2.0 / 3;
+  ABLMG_REQUIRE(k.a > 0 && w.a > 0 && e > 0, "problem 'multiple': alpha_p, alpha_w and epsilon must be positive (got "
+                                                 << k.a << ", " << w.a << ", " << e << ")");
+  p.domain = wedgeDomain(1.5 * pi);
+  p.formula =
+      "r^(2/3)*sin(2*theta/3)+exp(-alpha_p*((x-xp)^2+(y-yp)^2))+atan(alpha_w*(sqrt((x-xw)^2+(y-yw)^2)-r0))"
+      "+exp(-(1+y)/epsilon)";
+  p.u = [=](double x, double y) { return cornerU(a, x, y) + k.u(x, y) + w.u(x, y) + std::exp(-(1 + y) / e); };
+  p.grad = [=](double x, double y) -> Vec2 {
+    return cornerGrad(a, x, y) + k.grad(x, y) + w.grad(x, y) + Vec2(0, -std::exp(-(1 + y) / e) / e);
+  };
+  p.f = [=](double x, double y) { return k.f(x, y) + w.f(x, y) - std::exp(-(1 + y) / e) / (e * e); };
+}
+
+void buildTanhLayer(TestProblem& p) {
+  // u = tanh((y − 0.5)/ε): u_y = (1 − u²)/ε, u_yy = −2u(1 − u²)/ε².
+  const double e = p.params["epsilon"];
+  ABLMG_REQUIRE(e > 0, "problem 'tanhlayer': epsilon = " << e << " must be positive");
+  p.formula = "tanh((y-0.5)/epsilon)";
+  p.u = [=](double, double y) { return std::tanh((y - 0.5) / e); };
+  p.grad = [=](double, double y) -> Vec2 {
+    const double u = std::tanh((y - 0.5) / e);
+    return Vec2(0, (1 - u * u) / e);
+  };
+  p.f = [=](double, double y) {
+    const double u = std::tanh((y - 0.5) / e);
+    return 2 * u * (1 - u * u) / (e * e);
+  };
+}
+
+void buildVerification(TestProblem& p) {
+  if (p.name == "smooth") {  // u = eˣ sin(πy) + x y: Δu = (1 − π²) eˣ sin(πy).
+    p.formula = "exp(x)*sin(pi*y)+x*y";
+    p.u = [](double x, double y) { return std::exp(x) * std::sin(pi * y) + x * y; };
+    p.grad = [](double x, double y) -> Vec2 {
+      return Vec2(std::exp(x) * std::sin(pi * y) + y, pi * std::exp(x) * std::cos(pi * y) + x);
+    };
+    p.f = [](double x, double y) { return (pi * pi - 1) * std::exp(x) * std::sin(pi * y); };
+  } else if (p.name == "sine") {
+    p.formula = "sin(pi*x)*sin(pi*y)";
+    p.u = [](double x, double y) { return std::sin(pi * x) * std::sin(pi * y); };
+    p.grad = [](double x, double y) -> Vec2 {
+      return Vec2(pi * std::cos(pi * x) * std::sin(pi * y), pi * std::sin(pi * x) * std::cos(pi * y));
+    };
+    p.f = [](double x, double y) { return 2 * pi * pi * std::sin(pi * x) * std::sin(pi * y); };
+  } else {  // linear
+    p.formula = "1+2*x-3*y";
+    p.u = [](double x, double y) { return 1 + 2 * x - 3 * y; };
+    p.grad = [](double, double) -> Vec2 { return Vec2(2, -3); };
+    p.f = [](double, double) { return 0.0; };
+  }
+}
+
 std::map<std::string, double> defaultsOf(const std::string& name) {
   if (name == "wavefront") return {{"alpha", 20.0}, {"xc", -0.05}, {"yc", -0.05}, {"r0", 0.7}};
   if (name == "peak") return {{"alpha", 1000.0}, {"xc", 0.5}, {"yc", 0.5}};
   if (name == "tanhlayer") return {{"epsilon", 0.01}};
+  if (name == "reentrant") return {{"omega", 1.75 * pi}};
+  if (name == "linesing") return {{"alpha", 1.5}, {"beta", 0.6}};
+  if (name == "multiple")
+    return {{"alpha_p", 1000.0}, {"xp", -std::sqrt(5.0) / 4},
+            {"yp", -0.25},       {"alpha_w", 200.0},
+            {"xw", 0.0},         {"yw", -0.75},
+            {"r0", 0.75},        {"epsilon", 0.01}};
   return {};
 }
 
-Domain lshapeDomain() {
-  BoundaryLoop loop;
-  loop.points = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(-1, 1), Vec2(-1, -1), Vec2(0, -1)};
-  loop.tags = {1, 2, 3, 4, 5, 6};
-  return Domain(loop);
+void requireKnown(const std::string& name) {
+  const auto names = problemNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
+  std::ostringstream os;
+  for (const auto& n : names) os << (&n == &names.front() ? "" : ", ") << n;
+  ABLMG_REQUIRE(false, "unknown problem '" << name << "' (valid: " << os.str() << ")");
 }
 
 }  // namespace
 
 std::vector<std::string> problemNames() {
-  return {"wavefront", "peak", "lshape", "tanhlayer", "smooth", "sine", "linear"};
+  return {"wavefront", "peak", "lshape", "tanhlayer", "reentrant", "linesing", "multiple", "smooth", "sine", "linear"};
 }
 
 PoissonProblem TestProblem::poisson() const {
@@ -42,12 +216,7 @@ PoissonProblem TestProblem::poisson() const {
 }
 
 TestProblem makeProblem(const std::string& name, const std::map<std::string, double>& params) {
-  const auto names = problemNames();
-  if (std::find(names.begin(), names.end(), name) == names.end()) {
-    std::ostringstream os;
-    for (const auto& n : names) os << (&n == &names.front() ? "" : ", ") << n;
-    ABLMG_REQUIRE(false, "unknown problem '" << name << "' (valid: " << os.str() << ")");
-  }
+  requireKnown(name);
   TestProblem p;
   p.name = name;
   p.params = defaultsOf(name);
@@ -62,88 +231,31 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
     p.params[key] = value;
   }
   p.domain = Domain::rectangle(0, 0, 1, 1);
-
   if (name == "wavefront") {
-    // Mitchell (2013): u = atan(α(r − r0)); u_r = α/(1+s²), u_rr = −2α² s/(1+s²)², s = α(r − r0).
-    const double a = p.params["alpha"], xc = p.params["xc"], yc = p.params["yc"], r0 = p.params["r0"];
-    ABLMG_REQUIRE(a > 0, "problem 'wavefront': alpha = " << a << " must be positive");
-    p.formula = "atan(alpha*(sqrt((x-xc)^2+(y-yc)^2)-r0))";
-    p.u = [=](double x, double y) { return std::atan(a * (std::hypot(x - xc, y - yc) - r0)); };
-    p.grad = [=](double x, double y) -> Vec2 {
-      const double r = std::hypot(x - xc, y - yc), s = a * (r - r0);
-      return Vec2(x - xc, y - yc) * (a / (1 + s * s) / r);
-    };
-    p.f = [=](double x, double y) {
-      const double r = std::hypot(x - xc, y - yc), s = a * (r - r0), d = 1 + s * s;
-      const double ur = a / d, urr = -2 * a * a * s / (d * d);
-      return -(urr + ur / r);
-    };
+    buildWavefront(p);
   } else if (name == "peak") {
-    // Mitchell (2013): u = exp(−α ρ²), ρ² = |x − xc|²; Δu = u (4α²ρ² − 4α).
-    const double a = p.params["alpha"], xc = p.params["xc"], yc = p.params["yc"];
-    ABLMG_REQUIRE(a > 0, "problem 'peak': alpha = " << a << " must be positive");
-    p.formula = "exp(-alpha*((x-xc)^2+(y-yc)^2))";
-    p.u = [=](double x, double y) { return std::exp(-a * ((x - xc) * (x - xc) + (y - yc) * (y - yc))); };
-    p.grad = [=](double x, double y) -> Vec2 {
-      const double u = std::exp(-a * ((x - xc) * (x - xc) + (y - yc) * (y - yc)));
-      return Vec2(x - xc, y - yc) * (-2 * a * u);
-    };
-    p.f = [=](double x, double y) {
-      const double r2 = (x - xc) * (x - xc) + (y - yc) * (y - yc);
-      return std::exp(-a * r2) * (4 * a - 4 * a * a * r2);
-    };
+    buildPeak(p);
   } else if (name == "lshape") {
-    // Mitchell (2013) (reentrant corner, ω = 3π/2): u = r^(2/3) sin(2θ/3), harmonic, so f = 0;
-    // ∇u = (2/3) r^(−1/3) (−sin(θ/3), cos(θ/3)).
-    p.domain = lshapeDomain();
+    p.domain = wedgeDomain(1.5 * pi);
     p.formula = "r^(2/3)*sin(2*theta/3)";
-    auto theta = [](double x, double y) {
-      double t = std::atan2(y, x);
-      return t < 0 ? t + 2 * pi : t;
-    };
-    p.u = [=](double x, double y) {
-      const double r = std::hypot(x, y);
-      return r == 0 ? 0.0 : std::pow(r, 2.0 / 3) * std::sin(2 * theta(x, y) / 3);
-    };
-    p.grad = [=](double x, double y) -> Vec2 {
-      const double r = std::hypot(x, y), t = theta(x, y);
-      return Vec2(-std::sin(t / 3), std::cos(t / 3)) * (2.0 / 3 * std::pow(r, -1.0 / 3));
-    };
-    p.f = [](double, double) { return 0.0; };
+    buildCorner(p, 1.5 * pi);
+  } else if (name == "reentrant") {
+    const double omega = p.params["omega"];
+    ABLMG_REQUIRE(omega > pi && omega < 2 * pi - 1e-9,
+                  "problem 'reentrant': omega = " << omega
+                                                  << " must be in (pi, 2 pi) (the slit domain, omega = 2 pi, needs a "
+                                                     "slit in the domain)");
+    p.domain = wedgeDomain(omega);
+    p.formula = "r^(pi/omega)*sin(pi*theta/omega)";
+    buildCorner(p, omega);
+  } else if (name == "linesing") {
+    buildLineSingularity(p);
+  } else if (name == "multiple") {
+    buildMultiple(p);
   } else if (name == "tanhlayer") {
-    // u = tanh((y − 0.5)/ε): u_y = (1 − u²)/ε, u_yy = −2u(1 − u²)/ε².
-    const double e = p.params["epsilon"];
-    ABLMG_REQUIRE(e > 0, "problem 'tanhlayer': epsilon = " << e << " must be positive");
-    p.formula = "tanh((y-0.5)/epsilon)";
-    p.u = [=](double, double y) { return std::tanh((y - 0.5) / e); };
-    p.grad = [=](double, double y) -> Vec2 {
-      const double u = std::tanh((y - 0.5) / e);
-      return Vec2(0, (1 - u * u) / e);
-    };
-    p.f = [=](double, double y) {
-      const double u = std::tanh((y - 0.5) / e);
-      return 2 * u * (1 - u * u) / (e * e);
-    };
-  } else if (name == "smooth") {
-    // u = eˣ sin(πy) + x y: Δu = (1 − π²) eˣ sin(πy).
-    p.formula = "exp(x)*sin(pi*y)+x*y";
-    p.u = [](double x, double y) { return std::exp(x) * std::sin(pi * y) + x * y; };
-    p.grad = [](double x, double y) -> Vec2 {
-      return Vec2(std::exp(x) * std::sin(pi * y) + y, pi * std::exp(x) * std::cos(pi * y) + x);
-    };
-    p.f = [](double x, double y) { return (pi * pi - 1) * std::exp(x) * std::sin(pi * y); };
-  } else if (name == "sine") {
-    p.formula = "sin(pi*x)*sin(pi*y)";
-    p.u = [](double x, double y) { return std::sin(pi * x) * std::sin(pi * y); };
-    p.grad = [](double x, double y) -> Vec2 {
-      return Vec2(pi * std::cos(pi * x) * std::sin(pi * y), pi * std::sin(pi * x) * std::cos(pi * y));
-    };
-    p.f = [](double x, double y) { return 2 * pi * pi * std::sin(pi * x) * std::sin(pi * y); };
-  } else {  // linear
-    p.formula = "1+2*x-3*y";
-    p.u = [](double x, double y) { return 1 + 2 * x - 3 * y; };
-    p.grad = [](double, double) -> Vec2 { return Vec2(2, -3); };
-    p.f = [](double, double) { return 0.0; };
+    buildTanhLayer(p);
+  } else {
+    buildVerification(p);
   }
   return p;
 }

@@ -26,15 +26,8 @@ inline double interBubbleForce(double w, double k0 = 1.0) {
 /// node: at rest (w = 1) with b = 5a it leaves a = 0.6, b = 3 and an edge of eq. (3) length
 /// 2.2, beyond the adjacency radius 1.7, so the connection has no link for it and repairs its
 /// triangles. With the averaged w the packing rests where the mesh is measured (quality.hpp).
-/// Measured (session 7, helper-20): remeshing the tanh((y − 0.5)/0.01) layer to its cycle-6
-/// metric without gradation (anisotropy up to 10⁴), averaged instead of eq. (8): edges in
-/// [1/√2, √2] 98.0 → 99.1 %, within ±10 % 78.6 → 85.7 %, repaired triangles 865 → 556; the
-/// remesh benchmark (scripts/bench_remesh.sh) ring 90.6 → 90.8 %, wave front 93.7 → 94.7 %
-/// within ±10 %; the paper disks within their run-to-run spread. But on the adaptive tanh layer
-/// (`ablmg adapt --problem tanhlayer`, targets 250 … 32000, three schedules) the H1 error of the
-/// last cycle is 8–15 % higher with it (8.90e-3 → 1.02e-2), L2 mixed; Mitchell's wave front
-/// (16 cycles to 1.1·10⁵ vertices) is unchanged (H1 1.745e-2 → 1.740e-2). So eq. (8) stays the
-/// default; `"pairDistance": "averaged"` (PlacementOptions) suits metrics with jumps.
+/// Averaged suits metrics with jumps (fewer repaired triangles on an ungraded layer metric) but
+/// raises the adaptive layer's H1 error by 8–15 %, so eq. (8) is the default (docs/method.md).
 enum class PairDistance {
   Harmonic,  ///< 2ab/(a + b), eq. (8): l / (l_ij + l_ji) (default)
   Averaged,  ///< √((a² + b²)/2), eq. (3) with the averaged tensor

@@ -2,6 +2,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
 #include "ablmg/mesher/triangulation.hpp"
 
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -34,9 +34,6 @@ bool swapCriterion(const Vec2& x, const Vec2& z, const Vec2& y, const Vec2& w, c
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 bool properCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
   return orient2d(p, q, r) * orient2d(p, q, s) < 0 && orient2d(r, s, p) * orient2d(r, s, q) < 0;
@@ -168,7 +165,7 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
   st.deletionRounds = 0;
   // 1. Links: adjacency pairs inside the domain.
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   std::vector<int> prevB(n, -1), nextB(n, -1);
   for (const auto& e : placement.boundaryEdges) {
     nextB[e.a] = e.b;
@@ -309,7 +306,7 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   for (auto& v : perThread) consistent.insert(consistent.end(), v.begin(), v.end());
   std::sort(consistent.begin(), consistent.end());
   st.consistentTriangles = long(consistent.size());
-  st.secondsLocalMeshes = since(t0);
+  st.secondsLocalMeshes = watch.seconds();
   return consistent;
 }
 
@@ -528,7 +525,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   std::vector<char> used(n, 1);
   std::vector<std::array<int, 3>> consistent = localMeshes(placement, used, threads, st);
   {
-    const auto t0 = Clock::now();
+    const Stopwatch validateWatch;
     Mesh2 un;
     un.vertices = pos;
     un.triangles = consistent;
@@ -541,7 +538,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     else
       area = domain.area();
     const bool ok = un.validate(area, 1e-9).ok;
-    result.secondsValidate = since(t0);
+    result.secondsValidate = validateWatch.seconds();
     if (ok) {
       result.validated = true;
       result.mesh = std::move(un);
@@ -549,9 +546,9 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
       std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
       return result;
     }
-    const auto t1 = Clock::now();
+    const Stopwatch repairWatch;
     const bool repaired = options.localRepair && repairLocally(placement, consistent, area, result);
-    st.secondsRepair += since(t1);
+    st.secondsRepair += repairWatch.seconds();
     if (repaired) {
       st.localRepair = true;
       return result;
@@ -559,7 +556,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   }
 
   // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
-  auto t0 = Clock::now();
+  Stopwatch watch;
   Triangulation tri(pos);
   std::vector<std::array<int, 2>> boundary;
   boundary.reserve(placement.boundaryEdges.size());
@@ -575,13 +572,13 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   for (int t = 0; t < tri.numTriangleSlots(); ++t)
     if (tri.inside(t))
       for (int v : tri.triangle(t)) used[v] = 1;
-  st.secondsRepair += since(t0);
+  st.secondsRepair += watch.seconds();
 
   // Nodes outside the boundary polygon: redo the local meshes without them.
   if (std::count(used.begin(), used.end(), 0) > 0) consistent = localMeshes(placement, used, threads, st);
 
   // 4. Repair on the scaffold: eq. (12) swaps, keep every consistent edge, swaps again.
-  t0 = Clock::now();
+  watch.restart();
   const auto criterion = [&](int x, int z, int y, int w) {
     return swapCriterion(pos[x], pos[z], pos[y], pos[w], 0.25 * (met[x] + met[z] + met[y] + met[w]));
   };
@@ -622,7 +619,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   }
   for (const auto& e : placement.boundaryEdges)
     result.mesh.boundaryEdges.push_back({vertexOf[e.a], vertexOf[e.b], e.ref});
-  st.secondsRepair += since(t0);
+  st.secondsRepair += watch.seconds();
   return result;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Lattice defects of a bubble packing and their removal by local annealing (issue 9).
+/// Lattice defects of a bubble packing and their removal by local annealing.
 ///
 /// What. Each interior node's neighbours in its own metric (localTopology: the bubbles whose
 /// bisectors bound its Voronoi cell in M_i), the defects among them (degree ≠ 6: 5 and 7 are
@@ -25,11 +25,10 @@
 /// 0.4 melt the packing (86 %); shaking every node instead of the defects' neighbourhoods
 /// gains less for more steps.
 ///
-/// Nodes within 1.5 (metric) of the boundary are not kicked (session 6, the lead's change): the
-/// first rows along the boundary are set by its fixed nodes, and kicking them raised the repaired
-/// triangles of ex01 (eq. (4) on [−3, 3]², sharp metric corners) from 13 to 35 and lowered the
-/// Fig. 16 surface's α min from 0.66 to 0.55; with them kept: 20 and 0.58, ring 90.6 %, line
-/// 92.2 %, eq. (4) 91.2 % within ±10 % (damping 0.35).
+/// Nodes within 1.5 (metric) of the boundary are not kicked: the
+/// first rows along the boundary are set by its fixed nodes, and kicking them raises the repaired
+/// triangles of ex01 (eq. (4) on [−3, 3]², sharp metric corners) from 20 to 35 and lowers the
+/// Fig. 16 surface's α min from 0.58 to 0.55 (docs/method.md).
 ///
 /// Invariants: Interior nodes only, a kicked node stays inside and ≥ 0.5 (metric) from the
 /// boundary; the node count is unchanged; deterministic (the kick is a hash of the node id and

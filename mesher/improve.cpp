@@ -2,11 +2,11 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/quality.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -14,8 +14,6 @@
 
 namespace ablmg::mesher {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 constexpr int kMaxStar = 64;  ///< a longer star walk means a broken mesh: the vertex is not moved
 
@@ -560,7 +558,7 @@ void requireValid(const ImproveOptions& o) {
 
 ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const MetricField& field,
                             const ImproveOptions& options) {
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   requireValid(options);
   std::vector<double> quality = elementQualities(mesh, metrics);  // checks metrics.size()
   ImproveStats stats;
@@ -576,7 +574,7 @@ ImproveStats improveQuality(Mesh2& mesh, std::vector<Metric2>& metrics, const Me
     stats.badAfter = long(std::count_if(q.begin(), q.end(), [&](double x) { return x < options.qThreshold; }));
     stats.qMinAfter = minOf(q);
   }
-  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  stats.seconds = watch.seconds();
   return stats;
 }
 

@@ -56,8 +56,8 @@ namespace ablmg::mesher {
 
 struct ImproveOptions {
   bool enabled = true;           ///< meshDomain runs the pass (improveQuality itself ignores it)
-  double qThreshold = 0.85;      ///< triangles with q below this are improved; in (0, 1]. 0.85 (was
-                                 ///< 0.7): q min 0.70 → 0.85 on the remesh benchmark, ±10 % share kept
+  double qThreshold = 0.85;      ///< triangles with q below this are improved; in (0, 1]. 0.85 gives
+                                 ///< q min 0.85 on the remesh benchmark, ±10 % share kept (docs/method.md)
   int maxPasses = 8;             ///< cap on swap + relocation passes, ≥ 0
   double swapMargin = 1e-3;      ///< a swap must raise min q of its two triangles by more (no cycling)
   double moveMargin = 1e-4;      ///< a move must raise min q of its star by more

@@ -1,8 +1,7 @@
 #include "ablmg/mesher/mesher.hpp"
 
 #include "ablmg/core/error.hpp"
-
-#include <chrono>
+#include "ablmg/core/stopwatch.hpp"
 
 namespace ablmg::mesher {
 namespace {
@@ -37,11 +36,10 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   const bool improved = is.swaps + is.moves + is.collapses > 0;
   // Every mesh returned is valid: checked here unless connect() already checked this very mesh
   // and the post-pass left it as it was.
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   if (!connected.validated || improved)
     connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
-  result.stats.secondsValidate =
-      connected.secondsValidate + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  result.stats.secondsValidate = connected.secondsValidate + watch.seconds();
   result.mesh = std::move(connected.mesh);
   return result;
 }

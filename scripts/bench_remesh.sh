@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# `ablmg remesh` throughput (issue 7: ≥ 10⁵ output triangles per second at ≈ 10⁵ triangles,
-# file reading and writing included), one command:
+# `ablmg remesh` throughput (output triangles per second at ≈ 10⁵ triangles, file reading and
+# writing included), one command:
 #
 #   bash scripts/bench_remesh.sh            # about a minute after the build
 #   MMG=/path/to/mmg2d_O3 bash scripts/bench_remesh.sh   # also time MMG2D on the same files
@@ -14,9 +14,10 @@
 #         next cycle (-hgrad -1, as the loop does), 2.3·10⁵ output triangles.
 # Each remesh runs 3 times; the table gives the fastest wall clock (/usr/bin/time, the whole
 # process) and its peak memory, the output triangles per second, and the edge statistics of
-# `ablmg stats` (MMG's output measured the same way). Writes bench/results/remesh.md.
+# `ablmg stats` (MMG's output measured the same way). Writes bench/results/remesh.md and the
+# table into docs/benchmarks.md (between <!-- bench_remesh.sh:begin --> and <!-- bench_remesh.sh:end -->).
 # The environment is left as it is (OpenMP's default busy-waiting; a loaded machine wants
-# OMP_WAIT_POLICY=passive, see README).
+# OMP_WAIT_POLICY=passive, see docs/limitations.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ ! -x build/bin/ablmg ]; then
@@ -86,3 +87,6 @@ out=bench/results/remesh.md
   done
 } > "$out"
 cat "$out"
+tail -n +3 "$out" > "$out.body"
+python3 scripts/update_benchmarks.py bench_remesh.sh "$out.body" --command "${MMG:+MMG=$MMG }bash scripts/bench_remesh.sh"
+rm -f "$out.body"

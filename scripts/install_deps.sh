@@ -7,6 +7,7 @@ packages=(
   cmake g++ make pkg-config
   libeigen3-dev        # dense 2x2/3x3 algebra, sparse matrices (core, fem, adapt)
   libsuitesparse-dev   # CHOLMOD supernodal Cholesky for the P1 systems (fem)
+  libmetis-dev         # METIS_NodeND, the graph ordering compared with ours (fem/ordering.cpp)
   libopenblas0-pthread # optimised BLAS for CHOLMOD's supernodal kernels (4x faster than reference BLAS at 10^6)
   nlohmann-json3-dev   # JSON configuration and reports (cli)
   libvtk9-dev          # .vtu output through VTK's XML writer (io)

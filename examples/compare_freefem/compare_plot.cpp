@@ -1,18 +1,19 @@
-// compare_freefem_plot: the table and the picture of examples/compare_freefem/run.sh (issue 11).
+// compare_freefem_plot: the tables and the picture of examples/compare_freefem/run.sh for one problem.
 //
-//   compare_freefem_plot --freefem freefem.csv --freefem-mesh freefem_final.mesh --ablmg DIR
-//                        --png compare.png --md compare.md [--freefem-wall S] [--ablmg-wall S]
+//   compare_freefem_plot --problem LABEL --freefem freefem.csv --freefem-mesh freefem_final.mesh --ablmg DIR
+//                        --png compare.png --md compare.md --summary summary.md
+//                        [--freefem-wall S] [--ablmg-wall S] [--reach-wall S] [--min-vertices N]
 //
-// Inputs: FreeFem++'s CSV (wavefront.edp: cycle,vertices,triangles,l2_error,h1_error,t_solve,
+// Inputs: FreeFem++'s CSV (loop.idp: cycle,vertices,triangles,l2_error,h1_error,t_solve,
 // t_mesh; CPU seconds), its last mesh (medit), and the output directory of `ablmg adapt
-// --medit on` (convergence.csv with wall seconds per phase, cycle_K.mesh). The whole-run wall
-// times measured by run.sh are optional.
+// --medit on` (convergence.csv with wall seconds per phase, cycle_K.mesh). Wall times measured
+// by run.sh: both whole loops, and ablmg's run stopped at FreeFem's final H1 error (--reach-wall).
 //
 // Steps: 1. read both CSVs; 2. error ratios ablmg / FreeFem at ablmg's N, FreeFem's adapted
 // curve (cycles ≥ 1) interpolated log-log (extrapolated along its end segment outside its
-// range, marked *; cycle 0 is both loops' uniform start mesh and is compared directly);
-// 3. rates over the last 4 cycles; 4. the Markdown report; 5. the PNG: L2 and H1 against N over
-// the two final meshes (io::tilePictures).
+// range, marked *); 3. rates over the last 4 sizes (the last cycle of each target size, as
+// ablmg adapt fits them); 4. the Markdown report and one summary row (the acceptance figures at
+// N ≥ --min-vertices, default 5000); 5. the PNG: L2 and H1 against N over the two final meshes.
 #include "ablmg/adapt/convergence.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/io/atomic_file.hpp"
@@ -94,24 +95,42 @@ std::string fmt(const char* f, double x) {
   return buf;
 }
 
+/// The convergence curve of ablmg's run: the last cycle of each target size.
+std::vector<std::size_t> curveRows(const Table& ab) {
+  std::vector<std::size_t> rows;
+  for (std::size_t k = 0; k < ab.rows; ++k)
+    if (k + 1 == ab.rows || ab["target_vertices"][k + 1] != ab["target_vertices"][k]) rows.push_back(k);
+  return rows;
+}
+
+double slopeOf(const Table& t, const std::vector<std::size_t>& rows, const std::string& col) {
+  std::vector<double> n, e;
+  for (std::size_t k : rows) {
+    n.push_back(t["vertices"][k]);
+    e.push_back(t[col][k]);
+  }
+  return adapt::logLogSlope(n, e, 4);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
-  std::map<std::string, std::string> arg{{"--freefem-wall", ""}, {"--ablmg-wall", ""}};
-  const std::vector<std::string> required{"--freefem", "--freefem-mesh", "--ablmg", "--png", "--md"};
+  std::map<std::string, std::string> arg{
+      {"--freefem-wall", ""}, {"--ablmg-wall", ""}, {"--reach-wall", ""}, {"--min-vertices", "5000"}};
+  const std::vector<std::string> required{"--problem", "--freefem", "--freefem-mesh", "--ablmg",
+                                          "--png",     "--md",      "--summary"};
   for (int i = 1; i < argc; i += 2) {
     const std::string key = argv[i];
     ABLMG_REQUIRE(arg.count(key) || std::count(required.begin(), required.end(), key),
-                  "compare_freefem_plot: unknown argument '" << key
-                                                             << "' (valid: --freefem --freefem-mesh --ablmg --png --md "
-                                                                "--freefem-wall --ablmg-wall)");
+                  "compare_freefem_plot: unknown argument '" << key << "'");
     ABLMG_REQUIRE(i + 1 < argc, "compare_freefem_plot: " << key << " needs a value");
     arg[key] = argv[i + 1];
   }
   for (const auto& key : required) ABLMG_REQUIRE(arg.count(key), "compare_freefem_plot: " << key << " is required");
+  const std::string label = arg["--problem"];
+  const double minN = std::stod(arg["--min-vertices"]);
 
-  // 1. Both loops' rows. FreeFem row k: solve on mesh k (CPU s), adaptmesh of mesh k+1.
-  //    ablmg row k: t_mesh built mesh k, then solve, recover + metric for mesh k+1 (wall s).
+  // 1. Both loops' rows.
   const Table ff = readCsv(arg["--freefem"]);
   const Table ab = readCsv((fs::path(arg["--ablmg"]) / "convergence.csv").string());
   const std::size_t nff = ff.rows, nab = ab.rows;
@@ -122,80 +141,70 @@ int main(int argc, char** argv) try {
     ffL2.emplace_back(ff["vertices"][k], ff["l2_error"][k]);
     ffH1.emplace_back(ff["vertices"][k], ff["h1_error"][k]);
   }
-  std::vector<double> ratioL2(nab), ratioH1(nab);
+  std::vector<double> atL2(nab), atH1(nab);
   std::vector<bool> extrapolated(nab, false);
+  double worstL2 = 0, worstH1 = 0, qMeanMin = 1;
+  bool fall = true;
   for (std::size_t k = 0; k < nab; ++k) {
-    const double n = ab["vertices"][k];
-    if (k == 0) {  // both uniform start meshes
-      ratioL2[k] = ab["l2_error"][k] / ff["l2_error"][0];
-      ratioH1[k] = ab["h1_error"][k] / ff["h1_error"][0];
-      continue;
-    }
     bool e1 = false, e2 = false;
-    ratioL2[k] = ab["l2_error"][k] / interpolateLogLog(ffL2, n, e1);
-    ratioH1[k] = ab["h1_error"][k] / interpolateLogLog(ffH1, n, e2);
+    atL2[k] = interpolateLogLog(ffL2, ab["vertices"][k], e1);
+    atH1[k] = interpolateLogLog(ffH1, ab["vertices"][k], e2);
     extrapolated[k] = e1 || e2;
+    if (ab["vertices"][k] >= minN) {
+      worstL2 = std::max(worstL2, ab["l2_error"][k] / atL2[k]);
+      worstH1 = std::max(worstH1, ab["h1_error"][k] / atH1[k]);
+    }
+    qMeanMin = std::min(qMeanMin, ab["q_mean"][k]);
+    if (k > 0 && ab["target_vertices"][k] > ab["target_vertices"][k - 1])
+      fall = fall && ab["l2_error"][k] < ab["l2_error"][k - 1] && ab["h1_error"][k] < ab["h1_error"][k - 1];
   }
 
-  // 3. Rates over the last 4 cycles (as ablmg adapt reports them).
-  const int window = 4;
-  const double ffRateL2 = adapt::logLogSlope(ff["vertices"], ff["l2_error"], window);
-  const double ffRateH1 = adapt::logLogSlope(ff["vertices"], ff["h1_error"], window);
-  const double abRateL2 = adapt::logLogSlope(ab["vertices"], ab["l2_error"], window);
-  const double abRateH1 = adapt::logLogSlope(ab["vertices"], ab["h1_error"], window);
+  // 3. Rates over the last 4 sizes.
+  std::vector<std::size_t> ffRows(nff);
+  for (std::size_t k = 0; k < nff; ++k) ffRows[k] = k;
+  const auto abRows = curveRows(ab);
+  const double ffRateL2 = slopeOf(ff, ffRows, "l2_error"), ffRateH1 = slopeOf(ff, ffRows, "h1_error");
+  const double abRateL2 = slopeOf(ab, abRows, "l2_error"), abRateH1 = slopeOf(ab, abRows, "h1_error");
 
-  // 4. The Markdown report.
-  double ffSolve = 0, ffMesh = 0, abSolve = 0, abMetric = 0, abMesh = 0;
+  // 4. The Markdown report: ablmg's cycles against FreeFem's curve, then FreeFem's cycles.
+  const double ffWall = arg["--freefem-wall"].empty() ? NAN : std::stod(arg["--freefem-wall"]);
+  const double reach = arg["--reach-wall"].empty() ? NAN : std::stod(arg["--reach-wall"]);
   io::writeFileAtomically(arg["--md"], [&](std::ostream& os) {
-    os << "# FreeFem++ adaptmesh vs ablmg adapt: Mitchell's wave front\n\n"
-       << "Cycle k of both loops targets the same vertex count (FreeFem's N_k). Ratios are ablmg's error over "
-          "FreeFem's adapted curve (cycles >= 1) interpolated log-log at ablmg's N (* = extrapolated along the end "
-          "segment; cycle 0 = both uniform start meshes, compared directly). Times per cycle: solve on mesh k, then "
-          "build mesh k+1 (FreeFem: adaptmesh, CPU s from clock(); ablmg: recover + metric, then the remesh, wall "
-          "s).\n\n"
-       << "| cycle | N FreeFem | N ablmg | L2 FreeFem | L2 ablmg | L2 ratio | H1 FreeFem | H1 ablmg | H1 ratio "
-          "| FreeFem solve | FreeFem remesh | ablmg solve | ablmg recover+metric | ablmg remesh |\n"
-       << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (std::size_t k = 0; k < std::max(nff, nab); ++k) {
-      os << "| " << k;
-      if (k < nff)
-        os << " | " << fmt("%.0f", ff["vertices"][k]);
-      else
-        os << " | ";
-      os << " | " << (k < nab ? fmt("%.0f", ab["vertices"][k]) : "");
-      os << " | " << (k < nff ? fmt("%.3e", ff["l2_error"][k]) : "") << " | "
-         << (k < nab ? fmt("%.3e", ab["l2_error"][k]) : "") << " | "
-         << (k < nab ? fmt("%.2f", ratioL2[k]) + (extrapolated[k] ? "*" : "") : "");
-      os << " | " << (k < nff ? fmt("%.4f", ff["h1_error"][k]) : "") << " | "
-         << (k < nab ? fmt("%.4f", ab["h1_error"][k]) : "") << " | "
-         << (k < nab ? fmt("%.2f", ratioH1[k]) + (extrapolated[k] ? "*" : "") : "");
-      if (k < nff) {
-        ffSolve += ff["t_solve"][k], ffMesh += ff["t_mesh"][k];
-        os << " | " << fmt("%.2f", ff["t_solve"][k]) << " | " << fmt("%.2f", ff["t_mesh"][k]);
-      } else {
-        os << " |  | ";
-      }
-      if (k < nab) {
-        const double next = k + 1 < nab ? ab["t_mesh"][k + 1] : 0.0, metric = ab["t_recover"][k] + ab["t_metric"][k];
-        abSolve += ab["t_solve"][k], abMetric += metric, abMesh += ab["t_mesh"][k];
-        os << " | " << fmt("%.2f", ab["t_solve"][k]) << " | " << fmt("%.2f", metric) << " | " << fmt("%.2f", next);
-      } else {
-        os << " |  |  | ";
-      }
-      os << " |\n";
+    os << "### " << label << "\n\n"
+       << "![" << label << "](figures/compare_freefem_" << label << ".png)\n\n"
+       << "ablmg's cycles; FreeFem's error at the same N interpolated log-log on its adapted curve (* = "
+          "extrapolated); times wall s (solve on mesh k; recover + metric and remesh build mesh k+1).\n\n"
+       << "| cycle | N | L2 | FreeFem L2 at N | L2 ratio | H1 | FreeFem H1 at N | H1 ratio | q mean | q min | solve "
+          "| recover+metric | remesh |\n"
+       << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (std::size_t k = 0; k < nab; ++k) {
+      const std::string star = extrapolated[k] ? "*" : "";
+      const double next = k + 1 < nab ? ab["t_mesh"][k + 1] : 0.0;
+      os << "| " << k << " | " << fmt("%.0f", ab["vertices"][k]) << " | " << fmt("%.3e", ab["l2_error"][k]) << " | "
+         << fmt("%.3e", atL2[k]) << " | " << fmt("%.2f", ab["l2_error"][k] / atL2[k]) << star << " | "
+         << fmt("%.3e", ab["h1_error"][k]) << " | " << fmt("%.3e", atH1[k]) << " | "
+         << fmt("%.2f", ab["h1_error"][k] / atH1[k]) << star << " | " << fmt("%.3f", ab["q_mean"][k]) << " | "
+         << fmt("%.3f", ab["q_min"][k]) << " | " << fmt("%.2f", ab["t_solve"][k]) << " | "
+         << fmt("%.2f", ab["t_recover"][k] + ab["t_metric"][k]) << " | " << fmt("%.2f", next) << " |\n";
     }
-    const double abFirstMesh = ab["t_mesh"][0];  // the uniform start mesh, not a remesh
-    os << "| sum |  |  |  |  |  |  |  |  | " << fmt("%.2f", ffSolve) << " | " << fmt("%.2f", ffMesh) << " | "
-       << fmt("%.2f", abSolve) << " | " << fmt("%.2f", abMetric) << " | " << fmt("%.2f", abMesh - abFirstMesh)
-       << " |\n\n";
-    os << "ablmg's start mesh (cycle 0, uniform metric) took " << fmt("%.2f", abFirstMesh)
-       << " s; FreeFem's is square(20,20).\n\n";
-    os << "Rates (log-log least squares over the last " << window << " cycles; optimal P1: L2 -1, H1 -0.5): FreeFem L2 "
-       << fmt("%.3f", ffRateL2) << ", H1 " << fmt("%.3f", ffRateH1) << "; ablmg L2 " << fmt("%.3f", abRateL2) << ", H1 "
-       << fmt("%.3f", abRateH1) << ".\n\n";
-    if (!arg["--freefem-wall"].empty() || !arg["--ablmg-wall"].empty())
-      os << "Whole run, wall clock (process start to end, including error integration and output): FreeFem++ "
-         << arg["--freefem-wall"] << " s, ablmg " << arg["--ablmg-wall"] << " s.\n";
+    os << "\nFreeFem++'s cycles (CPU s):\n\n| cycle | N | L2 | H1 | solve | adaptmesh "
+          "|\n|---:|---:|---:|---:|---:|---:|\n";
+    for (std::size_t k = 0; k < nff; ++k)
+      os << "| " << k << " | " << fmt("%.0f", ff["vertices"][k]) << " | " << fmt("%.3e", ff["l2_error"][k]) << " | "
+         << fmt("%.3e", ff["h1_error"][k]) << " | " << fmt("%.2f", ff["t_solve"][k]) << " | "
+         << fmt("%.2f", ff["t_mesh"][k]) << " |\n";
+    os << "\nRates (last 4 sizes; optimal P1: L2 -1, H1 -0.5): FreeFem L2 " << fmt("%.3f", ffRateL2) << ", H1 "
+       << fmt("%.3f", ffRateH1) << "; ablmg L2 " << fmt("%.3f", abRateL2) << ", H1 " << fmt("%.3f", abRateH1)
+       << ". Whole loops, wall: FreeFem++ " << fmt("%.1f", ffWall) << " s, ablmg " << arg["--ablmg-wall"]
+       << " s; ablmg stopped at FreeFem's final H1 error (" << fmt("%.3e", ff["h1_error"][nff - 1])
+       << "): " << fmt("%.1f", reach) << " s.\n\n";
+  });
+  io::writeFileAtomically(arg["--summary"], [&](std::ostream& os) {
+    os << "| " << label << " | " << fmt("%.0f", ab["vertices"][nab - 1]) << " | " << fmt("%.2f", worstL2) << " | "
+       << fmt("%.2f", worstH1) << " | " << fmt("%.2f", abRateL2) << " / " << fmt("%.2f", abRateH1) << " | "
+       << fmt("%.2f", ffRateL2) << " / " << fmt("%.2f", ffRateH1) << " | " << (fall ? "yes" : "**no**") << " | "
+       << fmt("%.3f", qMeanMin) << " | " << fmt("%.1f", reach) << " / " << fmt("%.1f", ffWall) << " = "
+       << fmt("%.2f", reach / ffWall) << " |\n";
   });
 
   // 5. The picture: L2 and H1 vs N on top, FreeFem's and ablmg's final meshes below.
@@ -210,9 +219,9 @@ int main(int argc, char** argv) try {
   plot.width = 900;
   const std::string l2png = (tmp / "l2.png").string(), h1png = (tmp / "h1.png").string();
   io::drawLogLogPlot(l2png, {curve("FreeFem++ L2", ff, "l2_error"), curve("ablmg L2", ab, "l2_error")}, {-1.0},
-                     "vertices N", "L2 error", "L2 error (P1), wave front", plot);
+                     "vertices N", "L2 error", "L2 error (P1), " + label, plot);
   io::drawLogLogPlot(h1png, {curve("FreeFem++ H1", ff, "h1_error"), curve("ablmg H1", ab, "h1_error")}, {-0.5},
-                     "vertices N", "H1 error", "H1 seminorm error (P1), wave front", plot);
+                     "vertices N", "H1 error", "H1 seminorm error (P1), " + label, plot);
   const Mesh2 ffMeshFinal = io::readMesh(arg["--freefem-mesh"]);
   const std::string abMeshPath = (fs::path(arg["--ablmg"]) / ("cycle_" + std::to_string(nab - 1) + ".mesh")).string();
   const Mesh2 abMeshFinal = io::readMesh(abMeshPath);
@@ -230,7 +239,7 @@ int main(int argc, char** argv) try {
        "ablmg, final mesh: " + std::to_string(abMeshFinal.numVertices()) + " vertices"},
       page);
   fs::remove_all(tmp);
-  std::cout << "Wrote " << arg["--md"] << " and " << png.string() << "\n";
+  std::cout << "Wrote " << arg["--md"] << ", " << arg["--summary"] << " and " << png.string() << "\n";
   return 0;
 } catch (const std::exception& e) {
   std::cerr << "compare_freefem_plot: " << e.what() << "\n";

@@ -1,86 +1,143 @@
 #!/usr/bin/env bash
-# FreeFem++'s classic adaptmesh loop and ablmg's adaptive loop side by side on Mitchell's wave
-# front, at matched vertex counts (issue 11). One command, from anywhere:
+# FreeFem++'s usual adaptmesh loop and ablmg's adaptive loop (its defaults) side by side on the
+# problems of fem/test_problems.hpp. One command, from anywhere:
 #
-#   examples/compare_freefem/run.sh [--cycles K] [--alpha A] [--shape-blend W] [--out DIR]
+#   examples/compare_freefem/run.sh --problem NAME|all [--maxnv N] [--out DIR] [--no-docs]
 #
-#   --cycles K  FreeFem++ cycles (default 12: up to 1.5·10⁴ vertices; 16: up to 1.2·10⁵)
-#   --alpha A   wave-front steepness (default 20)
-#   --shape-blend W  ablmg's metric shape (adapt/metric_from_hessian.hpp; default 0.25, the
-#               measured best for the H1 error on this problem; "none" = the L4 metric's own)
-#   --out DIR   output directory (default out/compare_freefem under the repository)
+#   NAME     wavefront, wavefront_steep (alpha 1000), peak, lshape, tanhlayer, reentrant_5pi4,
+#            reentrant_7pi4, linesing, multiple; all = every one of them, in that order
+#   --maxnv  FreeFem's loop stops after its first cycle with at least N/2 vertices (default 1.2e5)
+#   --out    work directory (default out/compare_freefem under the repository)
+#   --no-docs  do not rewrite docs/benchmarks.md and docs/figures/
 #   ABLMG_BUILD=DIR  build directory (default build under the repository)
+#   ABLMG_ADAPT_FLAGS="..."  extra flags for ablmg adapt (experiments only; the docs are made without)
 #
-# Steps: 1. install freefem++ with apt-get if FreeFem++ is missing (needs root or sudo);
-# 2. configure + build ablmg and the compare_freefem_plot program if missing (cmake Release);
-# 3. FreeFem++ wavefront.edp → DIR/freefem.csv, DIR/freefem_final.mesh;
-# 4. ablmg adapt --p 4 --shape-blend 0.25 with FreeFem's vertex count of each cycle as the target of the same cycle
-#    → DIR/ablmg/ (convergence.csv/.json, cycle_K.mesh);
-# 5. compare_freefem_plot → DIR/compare.png (L2 and H1 vs N, both final meshes) and
-#    DIR/compare.md (matched table, error ratios, per-cycle and whole-run times).
+# Per problem, in OUT/NAME/:
+# 1. FreeFem++ -nw NAME.edp (loop.idp: P1, err halved each cycle from a 16x16 grid, one
+#    adaptmesh per cycle, errors against the exact solution) -> freefem.csv, freefem_final.mesh;
+# 2. ablmg adapt --problem ... --vertices N (N = FreeFem's final vertex count; the default
+#    schedule) -> ablmg/ (convergence.csv, cycle_K.mesh);
+# 3. time to accuracy: ablmg adapt --vertices 2N --stop-h1 E (E = FreeFem's final H1 error), wall;
+# 4. compare_freefem_plot -> compare.md (tables), summary.md (one row), compare.png.
+# Then docs/benchmarks.md's section compare_freefem is rebuilt from every
+# OUT/*/compare.md present (each says when and at which commit it was measured) and the plots
+# are copied to docs/figures/compare_freefem_NAME.png.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-cycles=12
-alpha=20
-blend=0.25
+all="wavefront wavefront_steep peak lshape tanhlayer reentrant_5pi4 reentrant_7pi4 linesing multiple"
+problem=""
+maxnv=1.2e5
 out="$repo/out/compare_freefem"
+docs=1
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --cycles) cycles=$2; shift 2 ;;
-    --alpha) alpha=$2; shift 2 ;;
-    --shape-blend) blend=$2; shift 2 ;;
+    --problem) problem=$2; shift 2 ;;
+    --maxnv) maxnv=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
-    *) echo "run.sh: unknown argument '$1' (valid: --cycles K --alpha A --shape-blend W --out DIR)" >&2; exit 2 ;;
+    --no-docs) docs=0; shift ;;
+    *) echo "run.sh: unknown argument '$1' (valid: --problem NAME|all --maxnv N --out DIR --no-docs)" >&2; exit 2 ;;
   esac
 done
+[[ -n "$problem" ]] || { echo "run.sh: --problem NAME|all is required (NAME: $all)" >&2; exit 2; }
+problemArg=$problem
+[[ "$problem" == all ]] && problem=$all
 build=${ABLMG_BUILD:-$repo/build}
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 
-# 1. FreeFem++ (Debian package freefem++), only if missing.
-if ! command -v FreeFem++ > /dev/null; then
-  echo "== installing freefem++ (apt-get)"
-  sudo=""
-  if [[ $(id -u) -ne 0 ]]; then
-    command -v sudo > /dev/null || { echo "run.sh: FreeFem++ is missing; run as root or install freefem++" >&2; exit 1; }
-    sudo=sudo
-  fi
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get update -q
-  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q freefem++
-fi
+# NAME -> "script.edp|FreeFem++ arguments|ablmg adapt arguments"
+spec() {
+  local w5=3.9269908169872414 w7=5.497787143782138
+  case "$1" in
+    wavefront) echo "wavefront.edp||--problem wavefront" ;;
+    wavefront_steep) echo "wavefront.edp|-alpha 1000|--problem wavefront --param alpha=1000" ;;
+    peak) echo "peak.edp||--problem peak" ;;
+    lshape) echo "lshape.edp||--problem lshape" ;;
+    tanhlayer) echo "tanhlayer.edp||--problem tanhlayer" ;;
+    reentrant_5pi4) echo "reentrant.edp|-omega $w5|--problem reentrant --param omega=$w5" ;;
+    reentrant_7pi4) echo "reentrant.edp|-omega $w7|--problem reentrant --param omega=$w7" ;;
+    linesing) echo "linesing.edp||--problem linesing" ;;
+    multiple) echo "multiple.edp||--problem multiple" ;;
+    *) echo "run.sh: unknown problem '$1' (valid: $all, all)" >&2; return 1 ;;
+  esac
+}
+for name in $problem; do spec "$name" > /dev/null; done
 
-# 2. ablmg and the comparison program, only if missing.
+command -v FreeFem++ > /dev/null || { echo "run.sh: FreeFem++ is missing (Debian package freefem++)" >&2; exit 1; }
 if [[ ! -x "$build/bin/ablmg" || ! -x "$build/examples/compare_freefem_plot" ]]; then
   echo "== building ablmg in $build"
   [[ -f "$build/CMakeCache.txt" ]] || cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release
-  cmake --build "$build" --target ablmg compare_freefem_plot -j "$(nproc)"
+  cmake --build "$build" --target ablmg compare_freefem_plot -j 2
 fi
-
 now() { date +%s.%N; }
+commit=$(git -C "$repo" rev-parse --short HEAD 2> /dev/null || echo unknown)
+read -r -a extra <<< "${ABLMG_ADAPT_FLAGS:-}"
 
-# 3. FreeFem++'s loop.
-echo "== FreeFem++ adaptmesh loop: wave front alpha=$alpha, $cycles cycles"
-t0=$(now)
-(cd "$out" && FreeFem++ -nw "$here/wavefront.edp" -alpha "$alpha" -cycles "$cycles" \
-  -out freefem.csv -mesh freefem_final.mesh > freefem.log 2>&1) || { tail -30 "$out/freefem.log" >&2; exit 1; }
-t1=$(now)
-grep '^Cycle' "$out/freefem.log"
+for name in $problem; do
+  IFS='|' read -r edp ffargs abargs <<< "$(spec "$name")"
+  dir="$out/$name"
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  echo "== $name: FreeFem++ $edp $ffargs"
+  t0=$(now)
+  # shellcheck disable=SC2086
+  (cd "$dir" && FreeFem++ -nw "$here/$edp" $ffargs -maxnv "$maxnv" -out freefem.csv -mesh freefem_final.mesh \
+    > freefem.log 2>&1) || { tail -30 "$dir/freefem.log" >&2; exit 1; }
+  t1=$(now)
+  grep '^Cycle' "$dir/freefem.log" | tail -3
+  nff=$(tail -n 1 "$dir/freefem.csv" | cut -d, -f2)
+  h1ff=$(tail -n 1 "$dir/freefem.csv" | cut -d, -f5)
+  echo "== $name: ablmg adapt $abargs --vertices $nff ${extra[*]}"
+  t2=$(now)
+  # shellcheck disable=SC2086
+  "$build/bin/ablmg" adapt $abargs --vertices "$nff" "${extra[@]}" --uniform off --vtu off --medit on \
+    --out-dir "$dir/ablmg" > "$dir/ablmg.log"
+  t3=$(now)
+  grep -E '^(Cycle|Rates)' "$dir/ablmg.log" | sed 's/ t: .*//' | tail -4
+  echo "== $name: ablmg adapt $abargs --vertices $((2 * nff)) --stop-h1 $h1ff (time to FreeFem's final H1 error)"
+  t4=$(now)
+  # shellcheck disable=SC2086
+  "$build/bin/ablmg" adapt $abargs --vertices $((2 * nff)) --stop-h1 "$h1ff" "${extra[@]}" --uniform off --vtu off \
+    --out-dir "$dir/reach" > "$dir/reach.log"
+  t5=$(now)
+  reached=$(awk -F, -v e="$h1ff" 'NR > 1 && $5 <= e { r = 1 } END { print r ? "yes" : "no" }' "$dir/reach/convergence.csv")
+  reachWall=$(awk "BEGIN { print $t5 - $t4 }")
+  [[ "$reached" == yes ]] || reachWall=nan
+  {
+    "$build/examples/compare_freefem_plot" --problem "$name" --freefem "$dir/freefem.csv" \
+      --freefem-mesh "$dir/freefem_final.mesh" --ablmg "$dir/ablmg" --freefem-wall "$(awk "BEGIN { print $t1 - $t0 }")" \
+      --ablmg-wall "$(awk "BEGIN { printf \"%.1f\", $t3 - $t2 }")" --reach-wall "$reachWall" \
+      --png "$dir/compare.png" --md "$dir/compare_body.md" --summary "$dir/summary.md"
+  } > /dev/null
+  {
+    echo "### $name"
+    echo
+    echo "Measured $(date -u +%Y-%m-%d), commit $commit, \`examples/compare_freefem/run.sh --problem $name\`" \
+      "(FreeFem++ $edp $ffargs; ablmg adapt $abargs --vertices $nff${extra[*]:+ ${extra[*]}})."
+    tail -n +2 "$dir/compare_body.md"
+  } > "$dir/compare.md"
+  cat "$dir/summary.md"
+done
 
-# 4. ablmg's loop at FreeFem's vertex counts, cycle by cycle.
-targets=$(tail -n +2 "$out/freefem.csv" | cut -d, -f2 | paste -sd,)
-echo "== ablmg adapt: target vertices $targets"
-rm -rf "$out/ablmg"
-t2=$(now)
-blendArgs=()
-[[ "$blend" != none ]] && blendArgs=(--shape-blend "$blend")
-"$build/bin/ablmg" adapt --problem wavefront --param alpha="$alpha" --p 4 "${blendArgs[@]}" --target-vertices "$targets" \
-  --uniform off --vtu off --medit on --out-dir "$out/ablmg" | tee "$out/ablmg.log"
-t3=$(now)
-
-# 5. Table and picture.
-"$build/examples/compare_freefem_plot" --freefem "$out/freefem.csv" --freefem-mesh "$out/freefem_final.mesh" \
-  --ablmg "$out/ablmg" --freefem-wall "$(awk "BEGIN { print $t1 - $t0 }")" --ablmg-wall "$(awk "BEGIN { print $t3 - $t2 }")" \
-  --png "$out/compare.png" --md "$out/compare.md"
-cat "$out/compare.md"
+[[ $docs == 1 ]] || exit 0
+# The docs section, from every problem measured so far in OUT (in the order of $all); each
+# problem's part says when and at which commit it was measured, the whole gets the provenance
+# line of scripts/update_benchmarks.py.
+mkdir -p "$repo/docs/figures"
+body="$out/section.md"
+{
+  echo "| problem | N final | worst L2 ratio | worst H1 ratio | ablmg rates L2 / H1 | FreeFem rates L2 / H1 | errors fall | q mean min | time to FreeFem's H1 / its loop (s) |"
+  echo "|---|---:|---:|---:|---:|---:|---|---:|---:|"
+  for name in $all; do [[ -f "$out/$name/summary.md" ]] && cat "$out/$name/summary.md"; done
+  echo
+  for name in $all; do
+    [[ -f "$out/$name/compare.md" ]] || continue
+    cat "$out/$name/compare.md"
+    cp "$out/$name/compare.png" "$repo/docs/figures/compare_freefem_$name.png"
+  done
+} > "$body"
+/usr/bin/python3 "$repo/scripts/update_benchmarks.py" compare_freefem "$body" \
+  --command "examples/compare_freefem/run.sh --problem $problemArg"
+echo "Wrote docs/benchmarks.md (section compare_freefem) and docs/figures/compare_freefem_*.png"

@@ -121,3 +121,32 @@ TEST(AdaptiveLoop, ProblemWithoutExactSolution) {
   p.pde.f = fem::ScalarData::values({1, 2, 3});
   EXPECT_THROW(runAdaptiveLoop(p, o), InputError);
 }
+
+TEST(AdaptiveLoop, GeometricScheduleEndsAtNWithPassesBelowTheThreshold) {
+  ScheduleOptions o;  // N_0 400, growth 2, 2 passes below 10⁴
+  const auto s = geometricSchedule(15000, o);
+  // 15000 / 2^k down to [400, 800): 469, 938, 1875, 3750, 7500 twice each, then 15000 once.
+  const std::vector<double> expect{469, 469, 938, 938, 1875, 1875, 3750, 3750, 7500, 7500, 15000};
+  EXPECT_EQ(s, expect);
+  EXPECT_EQ(geometricSchedule(300, o), std::vector<double>({300, 300}));  // N ≤ N_0: N only
+  o.passes = 1;
+  o.growth = 4;
+  EXPECT_EQ(geometricSchedule(6400, o), std::vector<double>({400, 1600, 6400}));
+  EXPECT_THROW(geometricSchedule(5, o), InputError);
+  o.growth = 1;
+  EXPECT_THROW(geometricSchedule(1000, o), InputError);
+}
+
+TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
+  // Two passes per size: the fit takes one point per size (the second pass), so its window is
+  // the number of sizes (capped at 4), and the rates are those of a convergent loop.
+  AdaptOptions o;
+  ScheduleOptions s;
+  s.startVertices = 300;
+  o.targetVertices = geometricSchedule(1200, s);  // 300 ×2, 600 ×2, 1200 ×2
+  const AdaptReport r = runAdaptiveLoop(fem::makeProblem("wavefront"), o);
+  ASSERT_EQ(r.cycles.size(), 6u);
+  EXPECT_EQ(r.rateWindow, 3);
+  EXPECT_LT(r.l2Rate, -0.8);
+  EXPECT_LT(r.h1Rate, -0.4);
+}

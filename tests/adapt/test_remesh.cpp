@@ -2,7 +2,7 @@
 // with a hole (the domain comes from the input's boundary): the output is valid, covers the
 // same area, keeps the boundary refs on the right sides; hmin/hmax move the vertex count the
 // right way; bad input is an InputError naming what is wrong; same input, same mesh; the
-// result equals the composition `ablmg remesh` ran before the call existed.
+// result equals the composition of its steps run by hand.
 #include "ablmg/adapt/remesh.hpp"
 
 #include "ablmg/core/domain_from_mesh.hpp"
@@ -204,8 +204,8 @@ TEST(Remesh, SameInputSameMesh) {
 }
 
 TEST(Remesh, EqualsTheCompositionTheCommandLineRan) {
-  // What `ablmg remesh` did inline before this call existed: clamp, gradation, domain from
-  // the boundary, background field, meshDomain with the plateau stop.
+  // The steps of remesh() run by hand: clamp, gradation, domain from the boundary,
+  // background field, meshDomain with the plateau stop.
   const Mesh2 in = inputMesh();
   const double hmin = 0.09, hmax = 0.15;
   std::vector<Metric2> metric = inputMetric(in);

@@ -76,7 +76,7 @@ if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "no_exact")
   return()
 endif()
 if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "figures")
-  # Issue 11's per-problem figures from convergence.json: every cycle's mesh valid (the run
+  # The per-problem figures from convergence.json: every cycle's mesh valid (the run
   # fails otherwise) with q mean >= 0.9; the fitted rates over the last 4 cycles at most
   # MAX_H1_RATE / MAX_L2_RATE; and, if MIN_UNIFORM_RATIO is set, the finest uniform mesh's H1
   # error reached by the adaptive curve with at least that many times fewer vertices.
@@ -142,7 +142,11 @@ foreach(case
     "config_bad_expression|${_dir}/bad_f.json --target-vertices 300|bad_f.json: problem.f: bad expression"
     "config_no_domain|${_dir}/no_domain.json --target-vertices 300|no_domain.json: domain: missing"
     "config_library_domain|${_dir}/library_domain.json --target-vertices 300|library_domain.json: domain: a library problem has its own domain"
-    "no_targets|--problem wavefront|--target-vertices N1,N2,... is required"
+    "no_targets|--problem wavefront|--vertices N \\(the default schedule\\) or --target-vertices N1,N2,... is required"
+    "vertices_and_targets|--problem wavefront --vertices 1000 --target-vertices 500|give --vertices N or --target-vertices, not both"
+    "bad_vertices|--problem wavefront --vertices 5|final vertices must be in \\[10, 1e9\\] \\(got 5\\)"
+    "bad_growth|--problem wavefront --vertices 1000 --growth 1|growth must be in \\(1.01, 100\\]"
+    "bad_passes|--problem wavefront --vertices 1000 --passes 0|--passes must be an integer in 1..20"
     "unknown_problem|--problem wavefrnt --target-vertices 500|unknown problem 'wavefrnt'"
     "unknown_param|--problem wavefront --param beta=1 --target-vertices 500|unknown parameter 'beta'"
     "bad_param|--problem wavefront --param alpha --target-vertices 500|--param expects KEY=VALUE"
@@ -193,12 +197,12 @@ add_test(NAME cli_adapt_config_no_exact
                  -P ${CMAKE_CURRENT_LIST_FILE})
 set_tests_properties(cli_adapt_config_no_exact PROPERTIES LABELS cli)
 
-# Issue 11's acceptance per problem (README "The other problems of the library"): the layer at
+# The figures per problem (docs/benchmarks.md, adaptive loop): the layer at
 # optimal rates and the finest uniform mesh's H1 error (16k vertices) reached with >= 10x fewer
 # vertices; the reentrant corner's H1 rate <= -0.45 (uniform refinement: about -1/3). The
 # layer's L2 rate is that of the nodal interpolant: its FE L2 error is dominated by a smooth
-# global discrete error (the issue says so) and moves by 3x with small changes of the mesh
-# (1.5e-4 to 2.7e-4 at 7.7k vertices across code versions), its rate with it (-0.7 to -1.1).
+# global discrete error and moves by 3x with small changes of the mesh (1.5e-4 to 2.7e-4 at
+# 7.7k vertices), its rate with it (-0.7 to -1.1).
 add_test(NAME cli_adapt_layer_figures
          COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=figures
                  "-DARGS=--problem tanhlayer --target-vertices 250,500,1000,2000,4000,8000,16000"

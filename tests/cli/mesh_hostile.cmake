@@ -1,4 +1,4 @@
-# Hostile and extreme inputs to `ablmg mesh` (issue 6; the table is docs/hostile_inputs.md):
+# Hostile and extreme inputs to `ablmg mesh` (the table is docs/hostile_inputs.md):
 # each gets one clear error line and a non-zero exit with no output left, or a valid mesh.
 # Uses ablmg_cli_failure() from io_cli.cmake (included before this file: tests/CMakeLists.txt includes them in name order).
 set(_hdir ${CMAKE_CURRENT_BINARY_DIR}/cli_out/hostile)
@@ -52,9 +52,9 @@ set_tests_properties(cli.hostile_near_singular_metric PROPERTIES LABELS cli PASS
 ablmg_hostile_config(nearer_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"0.9999999999999\", \"m22\": \"1\"}}")
 add_test(NAME cli.hostile_nearer_singular_metric COMMAND ablmg mesh ${_hdir}/nearer_singular.json -o ${_hdir}/nearer_singular.mesh)
 set_tests_properties(cli.hostile_nearer_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles in" TIMEOUT 120)
-# A metric whose long size jumps 16x every 0.075 along a 2e-4-thin layer pushed two boundary
-# nodes into the same corner in one step; they landed on the same point and the connection
-# refused the duplicate. Now a valid mesh (most of it repaired: the metric is far from smooth).
+# A metric whose long size jumps 16x every 0.075 along a 2e-4-thin layer pushes two boundary
+# nodes into the same corner in one step; they must not land on the same point. A valid mesh
+# (most of it repaired: the metric is far from smooth).
 ablmg_hostile_config(corner_push "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"0.1*4^sin(2*pi*x/0.15)\", \"h2\": \"2e-4+0.05*abs(y-0.5)\", \"theta\": \"0\"}}")
 add_test(NAME cli.hostile_boundary_nodes_pushed_into_a_corner COMMAND ablmg mesh ${_hdir}/corner_push.json -o ${_hdir}/corner_push.mesh)
 set_tests_properties(cli.hostile_boundary_nodes_pushed_into_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 300)
@@ -76,7 +76,7 @@ add_test(NAME cli.mesh_deterministic_across_threads
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_identical.cmake.in)
 set_tests_properties(cli.mesh_deterministic_across_threads PROPERTIES LABELS cli)
 
-# A run killed mid-way leaves the previous outputs intact and no temporary file (issue 6).
+# A run killed mid-way leaves the previous outputs intact and no temporary file.
 ablmg_hostile_config(kill_small "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}}")
 ablmg_hostile_config(kill_large "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.0007\"}}")
 add_test(NAME cli.mesh_killed_run_leaves_outputs_intact

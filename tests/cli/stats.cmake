@@ -47,7 +47,7 @@ ablmg_stats_failure(stats_bad_metric_config "bad_metric.json: h1: expected strin
 ablmg_stats_failure(stats_two_metrics "give at most one of --sol, --metric, --metric-expr, --h"
                     ${_data}/square.mesh --h 1 --metric ${_dir}/square_h.json --json ${_dir}/stats_two_metrics.json)
 
-# Issue 9: the paper's disks given as a mesh + metric pair keep the issue's figures.
+# The paper's disks given as a mesh + metric pair keep their figures.
 foreach(case_within constant:0.95 line:0.90 ring:0.85)
   string(REPLACE ":" ";" cw ${case_within})
   list(GET cw 0 case)

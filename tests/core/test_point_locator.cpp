@@ -95,7 +95,7 @@ TEST(PointLocator, ExtremeAspectRatioAndFarPointsStayInTheGrid) {
   // the grid's cell count ext.x / side ≈ 1e21, converted to int before it was clamped
   // (undefined behaviour, caught by UBSan); so did any query point far outside the mesh. On the
   // 4096 × 1 grid that follows, the start-triangle search then visited whole squares of cells
-  // per ring, O(ring³): 5 s per located point; now a few thousand cells.
+  // per ring, O(ring³): 5 s per located point; it must visit a few thousand cells.
   Mesh2 m;
   m.vertices = {{0, 0}, {1.2e42, 0}, {1, 1}, {0, 1}};
   m.triangles = {{0, 1, 2}, {0, 2, 3}};

@@ -1,4 +1,4 @@
-// Verification (issue 5 acceptance): a smooth manufactured solution converges at the optimal
+// Verification: a smooth manufactured solution converges at the optimal
 // P1 rates on ≥ 4 levels of uniform and of randomly perturbed ("unstructured") meshes.
 #include "ablmg/fem/error_norms.hpp"
 #include "ablmg/fem/solve.hpp"
@@ -101,7 +101,7 @@ TEST(ConvergenceRates, MixedDirichletNeumannPerturbedMeshes) {
 
 TEST(ConvergenceRates, ReentrantCornerIsLimitedByItsSingularity) {
   // u = r^(2/3) sin(2θ/3) ∈ H^(5/3−ε): uniform refinement gives h^(2/3) in H1 and h^(4/3) in L2
-  // (the motivation for adaptive meshes; issue 11 compares against these slopes).
+  // (the motivation for adaptive meshes; the adaptive loop is compared against these slopes).
   const TestProblem tp = makeProblem("lshape");
   std::vector<double> h, l2, h1;
   for (int n : {8, 16, 32, 64, 128}) {

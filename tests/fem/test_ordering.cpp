@@ -3,6 +3,7 @@
 
 #include "ablmg/fem/assemble.hpp"
 #include "ablmg/fem/solve.hpp"
+#include "ablmg/core/domain.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
 #include "ablmg/fem/test_problems.hpp"
 
@@ -54,4 +55,32 @@ TEST(Ordering, SameForAnyThreadCount) {
   const std::vector<int> two = geometricNestedDissection(sys.A, sys.dofPoints);
   omp_set_num_threads(saved);
   EXPECT_EQ(one, two);
+}
+
+// A stretched grid (20 × 2000 cells of the unit square, aspect 100, like an adapted layer):
+// the bounding box is square, so the longer-axis rule may cut across the 2000 thin rows;
+// the smallest-separator cut runs along them (≈ 21 vertices). Fill and flops must stay
+// near METIS' graph ordering and far below the longer-axis rule's.
+TEST(Ordering, StretchedGridCutAlongTheRows) {
+  const Mesh2 m = structuredMesh(Domain::rectangle(0, 0, 1, 1), 20, 2000);
+  const LinearSystem sys = assemble(m, makeProblem("smooth").poisson());
+  SolveStats best, longer, metis;
+  const Eigen::VectorXd x1 = solveSystem(sys, &best, {Ordering::GeometricNestedDissection, 500});
+  solveSystem(sys, &longer, {Ordering::GeometricNestedDissection, 500, CutChoice::LongerAxis});
+  const Eigen::VectorXd x3 = solveSystem(sys, &metis, {Ordering::Metis, 500});
+  EXPECT_LT((x1 - x3).norm(), 1e-10 * x3.norm());
+  EXPECT_LT(best.residual, 1e-12);
+  EXPECT_LT(best.factorFlops, 1.5 * metis.factorFlops);
+  EXPECT_LT(best.factorFlops, 0.5 * longer.factorFlops);
+  EXPECT_LT(best.factorNonZeros, 1.3 * metis.factorNonZeros);
+}
+
+TEST(Ordering, MetisIsAPermutation) {
+  const Mesh2 m = unitSquareMesh(30, 0.2, 3);
+  const LinearSystem sys = assemble(m, makeProblem("sine").poisson());
+  std::vector<int> perm = metisNestedDissection(sys.A);
+  std::sort(perm.begin(), perm.end());
+  std::vector<int> iota(sys.A.rows());
+  std::iota(iota.begin(), iota.end(), 0);
+  EXPECT_EQ(perm, iota);
 }

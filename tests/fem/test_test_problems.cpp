@@ -17,9 +17,11 @@ TEST(TestProblems, RightHandSideIsMinusLaplacianAndGradientMatches) {
     std::map<std::string, double> params;
     if (name == "peak") params["alpha"] = 20;
     if (name == "tanhlayer") params["epsilon"] = 0.1;
+    if (name == "multiple") params = {{"alpha_p", 20}, {"alpha_w", 5}, {"epsilon", 0.3}};
     const TestProblem p = makeProblem(name, params);
     for (Vec2 x : points) {
-      if (name == "lshape") x = 2 * x - Vec2(1, 1) + Vec2(-0.05, 0.03);  // stays in the L, away from 0
+      if (name == "lshape" || name == "reentrant" || name == "linesing" || name == "multiple")
+        x = 2 * x - Vec2(1, 1) + Vec2(-0.05, 0.03);  // stays in the L, away from 0
       if (!p.domain.contains(x)) continue;
       const double h = 1e-4;
       const double u0 = p.u(x.x(), x.y());
@@ -49,6 +51,46 @@ TEST(TestProblems, DefaultsAndDomains) {
   EXPECT_NEAR(l.u(0.5, 0), 0.0, 1e-15);
   EXPECT_NEAR(l.u(0, -0.5), 0.0, 1e-15);
   EXPECT_NEAR(l.u(-0.5, 0), std::pow(0.5, 2.0 / 3) * std::sin(2 * M_PI / 3), 1e-14);
+}
+
+TEST(TestProblems, ReentrantCornerForSeveralAngles) {
+  // ω = 3π/2 is the L-shape (same domain, tags and solution); 5π/4 and 7π/4 cut the square's
+  // corner off at (−1,−1) and (1,−1): areas 2.5 and 3.5. u = 0 on both edges at the corner.
+  const TestProblem l = makeProblem("lshape"), r = makeProblem("reentrant", {{"omega", 1.5 * M_PI}});
+  ASSERT_EQ(r.domain.outer().points.size(), l.domain.outer().points.size());
+  for (std::size_t k = 0; k < l.domain.outer().points.size(); ++k) {
+    EXPECT_EQ(r.domain.outer().points[k], l.domain.outer().points[k]) << k;
+    EXPECT_EQ(r.domain.outer().tags[k], l.domain.outer().tags[k]) << k;
+  }
+  EXPECT_NEAR(r.u(-0.3, 0.4), l.u(-0.3, 0.4), 1e-15);
+  for (const auto& [omega, area] : {std::pair{1.25 * M_PI, 2.5}, std::pair{1.75 * M_PI, 3.5}}) {
+    const TestProblem p = makeProblem("reentrant", {{"omega", omega}});
+    EXPECT_NEAR(p.domain.area(), area, 1e-12) << omega;
+    EXPECT_NEAR(p.u(0.5, 0), 0.0, 1e-15);
+    EXPECT_NEAR(p.u(0.5 * std::cos(omega), 0.5 * std::sin(omega)), 0.0, 1e-14) << omega;
+    EXPECT_GT(p.u(-0.5, 0.1), 0.0);
+  }
+  EXPECT_EQ(makeProblem("reentrant").params.at("omega"), 1.75 * M_PI);
+  EXPECT_THROW(makeProblem("reentrant", {{"omega", 2 * M_PI}}), InputError);  // the slit: not a polygon here
+  EXPECT_THROW(makeProblem("reentrant", {{"omega", 3.0}}), InputError);
+}
+
+TEST(TestProblems, LineSingularityAndMultipleDifficulties) {
+  const TestProblem s = makeProblem("linesing");
+  EXPECT_NEAR(s.domain.area(), 4.0, 1e-14);
+  // Left of the line x = β(y + 1) u is cos(πy/2); right of it the singular term adds s^α.
+  EXPECT_NEAR(s.u(0.0, 0.0), 1.0, 1e-15);
+  EXPECT_NEAR(s.u(1.0, 0.0), 1.0 + std::pow(0.4, 1.5), 1e-14);
+  EXPECT_THROW(makeProblem("linesing", {{"alpha", 1.0}}), InputError);
+  const TestProblem m = makeProblem("multiple");
+  EXPECT_NEAR(m.domain.area(), 3.0, 1e-14);
+  // At the peak's centre: the corner term + 1 + the front + the layer.
+  const double xp = -std::sqrt(5.0) / 4, yp = -0.25;
+  const double r = std::hypot(xp, yp), th = std::atan2(yp, xp) + 2 * M_PI;
+  const double expect = std::pow(r, 2.0 / 3) * std::sin(2 * th / 3) + 1 +
+                        std::atan(200 * (std::hypot(xp, yp + 0.75) - 0.75)) + std::exp(-(1 + yp) / 0.01);
+  EXPECT_NEAR(m.u(xp, yp), expect, 1e-13);
+  EXPECT_THROW(makeProblem("multiple", {{"epsilon", 0}}), InputError);
 }
 
 TEST(TestProblems, BadNamesAndParametersAreInputErrorsListingTheValidOnes) {

@@ -306,8 +306,8 @@ TEST(Medit, HugeCountDoesNotAllocate) {
 }
 
 TEST(Medit, ScalarSizeWithoutARepresentableTensorNamesTheLine) {
-  // 1/h² overflows (h = 1e-200) or h² does (h = 1e200): no SPD tensor. The error used to be
-  // Metric2's "metric: sizes (...) give a tensor that is not numerically SPD", with no file:line.
+  // 1/h² overflows (h = 1e-200) or h² does (h = 1e200): no SPD tensor. The error must name
+  // the file and line, not only Metric2's "metric: sizes (...) give a tensor that is not numerically SPD".
   for (const char* h : {"1e-200", "1e200"})
     expectInputError(
         [h] {

@@ -1,5 +1,5 @@
 // Mirrors mesher/connect.hpp: eq. (12) and its tie rule; valid meshes on random polygons with
-// holes and random metrics; the degenerate inputs the issue names; the paper's disk cases
+// holes and random metrics; a hole close to the outer loop and a thin neck; the paper's disk cases
 // (§4.3) with the edge-length and quality figures; thread-count independence.
 #include "ablmg/mesher/connect.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -147,7 +147,7 @@ TEST(Connect, LocalRepairAndScaffoldBothValidate) {
   // The same placements connected twice: local repair first (step 4a) and the whole-domain
   // scaffold only. Both must validate, and the local repair must handle some of the
   // placements that needed a repair. The packings are stopped early (40 steps) so that
-  // repairs happen: at 300 steps only 4 of the 200 placements needed one (session 6) and none
+  // repairs happen: at 300 steps only 4 of the 200 placements need one and none
   // of the sanitizer build's 40; at 40 steps 36 of 200, 6 of the first 40.
   int local = 0, repairs = 0;
   for (int seed = 1; seed <= kRandomCases; ++seed) {
@@ -255,8 +255,8 @@ TEST(Connect, SameMeshForOneAndTwoThreads) {
   EXPECT_EQ(a.stats.deletedEdges, b.stats.deletedEdges);
 }
 
-// The paper's disk of radius 10 with its three metrics (§4.3). Thresholds are the issue's
-// acceptance figures; measured 96.8 / 86.3 / 90.7 % within ±10 % (constant / ring / line).
+// The paper's disk of radius 10 with its three metrics (§4.3). Thresholds are the
+// figures of docs/benchmarks.md with a margin; measured 96.8 / 86.3 / 90.7 % within ±10 % (constant / ring / line).
 struct DiskCase {
   const char* name;
   const char* h1;

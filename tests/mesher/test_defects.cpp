@@ -82,7 +82,7 @@ TEST(LocalTopology, AnisotropicLatticeIsReadInItsMetric) {
   EXPECT_EQ(countDefects(topologyOf(p)).total(), 0);
 }
 
-// The ring disk of §4.3 (issue 9): the annealing passes remove a good part of the defects
+// The ring disk of §4.3: the annealing passes remove a good part of the defects
 // the packing is left with (the mesh's interior nodes of degree ≠ 6: 596 → 434), for any
 // thread count alike; a constant metric (boundary dislocations only, below defectMinShare)
 // is left untouched, bit for bit. Kicks that did nothing would fail the 0.85 bound.

@@ -205,7 +205,7 @@ TEST(PlaceNodes, RefusesTooManyNodesBeforeAllocating) {
                InputError);
 }
 
-// The paper's §4.3 disk of radius 10 with its three metrics: the acceptance figures of issue 3.
+// The paper's §4.3 disk of radius 10 with its three metrics: ±5 % of N*, 95 % nearest neighbours in [0.85, 1.15], ×100 residual drop.
 struct DiskCase {
   const char* h1;
   const char* h2;

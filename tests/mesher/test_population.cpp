@@ -86,7 +86,7 @@ TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
   EXPECT_EQ(sys.size(), before - c.deleted + c.inserted);
 }
 
-// Steering (issue 9): a vacancy whose six neighbours have closed in by 15 % leaves a hole
+// Steering: a vacancy whose six neighbours have closed in by 15 % leaves a hole
 // whose best insertion point is 0.7 from the nearest rim node: too close for minGap = 0.85,
 // as in the slightly open spots a graded packing leaves. Below the target count the relaxed
 // steering thresholds fill it; once steerUp is cleared (placeNodes does that when the count

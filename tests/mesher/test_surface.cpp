@@ -71,7 +71,7 @@ TEST(Surface, LeeQualityIsOneForAUnitEquilateralTriangle) {
   EXPECT_EQ(checkManifold(m), "");
 }
 
-// Issue 10 acceptance on the built-ins: meshed through the real mesher, every surface is a
+// The built-ins meshed through the real mesher, every surface is a
 // consistently oriented manifold; Lee's α mean ≥ 0.90 and min ≥ 0.33 and 99 % of the 3D
 // edges within [1/√2, √2]·h (measured: paper-fig16 at h = 0.0594 — 4407 nodes, the paper's
 // 4385 — α mean 0.983, min 0.626, 99.6 %; sphere-patch 0.993 / 0.812 / 99.9 %; torus
@@ -90,7 +90,7 @@ TEST_P(BuiltinSurfaceMesh, ManifoldWithLeeQualityAndEdgeLengths) {
   EXPECT_GE(q.elements.min, 0.33);
   EXPECT_GE(q.edgeLengths.inSqrt2, 0.98);
 }
-INSTANTIATE_TEST_SUITE_P(Issue10, BuiltinSurfaceMesh,
+INSTANTIATE_TEST_SUITE_P(Builtins, BuiltinSurfaceMesh,
                          ::testing::Values("paper-fig16", "sphere-patch", "torus", "torus-closed", "cylinder",
                                            "saddle"),
                          [](const auto& info) {

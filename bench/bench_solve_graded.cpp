@@ -1,0 +1,130 @@
+// Benchmark: the P1 solve (ordering + CHOLMOD factorisation + triangular solves) at ≈ 10⁵
+// unknowns on a uniform mesh and on two adapted ones, with each fill-reducing ordering, to
+// show whether the solve depends on the grading. Not a test: run by hand,
+//   bash scripts/make_bench_meshes.sh              # the adapted meshes (not committed)
+//   ./build/bench/bench_solve_graded --benchmark_counters_tabular=true
+// Meshes: uniform = fem::unitSquareMesh(317) (99 856 unknowns); wavefront, tanhlayer = the
+// last cycle (≈ 9.5·10⁴ vertices) of `ablmg adapt --problem P` with the vertex schedule of
+// scripts/make_bench_meshes.sh, read from $ABLMG_BENCH_MESHES (default
+// bench/results/graded_meshes). uniform1M = unitSquareMesh(1001), assembly included.
+// Counters: unknowns, factor non-zeros (lnz), factorisation flops (CHOLMOD's fl: the
+// load-independent measure), ordering seconds; the error of the solution so that a fast
+// wrong answer shows.
+#include "ablmg/fem/assemble.hpp"
+#include "ablmg/fem/solve.hpp"
+#include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
+#include "ablmg/io/medit.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <string>
+
+using namespace ablmg;
+using namespace ablmg::fem;
+
+namespace {
+
+const char* const kMeshes[] = {"uniform", "wavefront", "tanhlayer", "uniform1M"};
+
+struct Case {
+  Mesh2 mesh;
+  TestProblem problem;
+  LinearSystem system;
+};
+
+/// The mesh and its assembled system, made once per process.
+const Case& caseOf(int index) {
+  static std::map<int, Case> cache;
+  auto it = cache.find(index);
+  if (it != cache.end()) return it->second;
+  const std::string name = kMeshes[index];
+  Case c;
+  if (name == "uniform" || name == "uniform1M") {
+    c.mesh = unitSquareMesh(name == "uniform" ? 317 : 1001);
+    c.problem = makeProblem("smooth");
+  } else {
+    const char* env = std::getenv("ABLMG_BENCH_MESHES");
+    const std::filesystem::path dir = env ? env : "bench/results/graded_meshes";
+    c.mesh = io::readMesh((dir / (name + ".mesh")).string());
+    c.problem = makeProblem(name);
+  }
+  c.system = assemble(c.mesh, c.problem.poisson());
+  return cache.emplace(index, std::move(c)).first->second;
+}
+
+Ordering orderingOf(int k) {
+  return k == 0 || k == 1 ? Ordering::GeometricNestedDissection : k == 2 ? Ordering::Metis : Ordering::Cholmod;
+}
+const char* const kOrderings[] = {"geometric(smallest separator)", "geometric(longer axis)", "metis", "cholmod(amd)"};
+
+void BM_Solve(benchmark::State& state) {
+  const int meshIndex = int(state.range(0)), orderingIndex = int(state.range(1));
+  state.SetLabel(std::string(kMeshes[meshIndex]) + " " + kOrderings[orderingIndex]);
+  const Case* c = nullptr;
+  try {
+    c = &caseOf(meshIndex);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  SolveOptions options;
+  options.ordering = orderingOf(orderingIndex);
+  options.cut = orderingIndex == 1 ? CutChoice::LongerAxis : CutChoice::SmallestSeparator;
+  SolveStats stats;
+  Eigen::VectorXd x;
+  for (auto _ : state) {
+    x = solveSystem(c->system, &stats, options);
+    benchmark::DoNotOptimize(x.data());
+  }
+  const Eigen::VectorXd u = c->system.expand(x);
+  state.counters["unknowns"] = stats.unknowns;
+  state.counters["lnz"] = stats.factorNonZeros;
+  state.counters["GFlop"] = stats.factorFlops * 1e-9;
+  state.counters["t_order"] = stats.orderingSeconds;
+  state.counters["maxVertexError"] = (u - interpolate(c->mesh, c->problem.u)).cwiseAbs().maxCoeff();
+}
+
+/// The ordering alone (geometric, smallest separator or longer axis; METIS), for its CPU time.
+void BM_Ordering(benchmark::State& state) {
+  const int meshIndex = int(state.range(0)), k = int(state.range(1));
+  state.SetLabel(std::string(kMeshes[meshIndex]) + " " + kOrderings[k]);
+  const LinearSystem& sys = caseOf(meshIndex).system;
+  for (auto _ : state) {
+    std::vector<int> perm =
+        k == 2 ? metisNestedDissection(sys.A)
+               : geometricNestedDissection(sys.A, sys.dofPoints, 500,
+                                           k == 1 ? CutChoice::LongerAxis : CutChoice::SmallestSeparator);
+    benchmark::DoNotOptimize(perm.data());
+  }
+}
+
+/// Assembly + solve at 10⁶ unknowns (uniform), the default ordering.
+void BM_AssembleAndSolve1M(benchmark::State& state) {
+  const Mesh2 mesh = unitSquareMesh(1001);
+  const PoissonProblem p = makeProblem("smooth").poisson();
+  PoissonSolution s;
+  for (auto _ : state) {
+    s = solvePoisson(mesh, p);
+    benchmark::DoNotOptimize(s.u.data());
+  }
+  state.counters["unknowns"] = s.stats.unknowns;
+  state.counters["t_assembly"] = s.stats.assemblySeconds;
+  state.counters["t_order"] = s.stats.orderingSeconds;
+  state.counters["t_solve"] = s.stats.solveSeconds;
+  state.counters["GFlop"] = s.stats.factorFlops * 1e-9;
+}
+
+}  // namespace
+
+BENCHMARK(BM_Solve)
+    ->ArgsProduct({{0, 1, 2}, {0, 1, 2, 3}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
+BENCHMARK(BM_Ordering)->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_AssembleAndSolve1M)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK_MAIN();

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The P1 solve against the grading: ordering + CHOLMOD factorisation + solves at ≈ 10⁵
+# unknowns on a uniform mesh and on the wave-front and tanh-layer adapted meshes, for each
+# fill-reducing ordering, and assembly + solve at 10⁶ unknowns. One command:
+#
+#   bash scripts/bench_solve.sh        # ≈ 3 min after the build (the adapted meshes: ≈ 1 min more)
+#
+# Writes bench/results/solve_graded.json and regenerates the section "Solver ordering against
+# the grading" of docs/benchmarks.md (scripts/update_benchmarks.py). Flops and factor non-zeros are CHOLMOD's counts (independent of the
+# machine's load); times are wall clock (median of 3) and depend on it.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if [ ! -x build/bench/bench_solve_graded ]; then
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DABLMG_BUILD_BENCH=ON > /dev/null
+  cmake --build build -j2 --target ablmg bench_solve_graded
+fi
+bash scripts/make_bench_meshes.sh bench/results/graded_meshes
+json=bench/results/solve_graded.json
+OMP_WAIT_POLICY=passive ./build/bench/bench_solve_graded --benchmark_out="$json" --benchmark_out_format=json \
+  --benchmark_filter='BM_Solve|BM_AssembleAndSolve1M' > /dev/null
+body=$(mktemp)
+/usr/bin/python3 - "$json" > "$body" <<'PY'
+import json, sys
+data = json.load(open(sys.argv[1]))
+ctx = data["context"]
+rows = [b for b in data["benchmarks"] if b["name"].startswith("BM_Solve")]
+one = [b for b in data["benchmarks"] if b["name"].startswith("BM_AssembleAndSolve1M")]
+load = ", ".join("%.1f" % x for x in ctx.get("load_avg", []))
+print(f"Load average at the start: {load} (a shared machine: wall times are noisy; flops and factor")
+print("non-zeros are CHOLMOD's counts and are not). Wall = ordering + factorisation + solves, median of 3.")
+print()
+print("| mesh | ordering | unknowns | factor nnz | GFlop | ordering s | solve wall s |")
+print("|---|---|---:|---:|---:|---:|---:|")
+for b in rows:
+    mesh, order = b["label"].split(" ", 1)
+    print(f"| {mesh} | {order} | {b['unknowns']:.0f} | {b['lnz']/1e6:.2f}M | {b['GFlop']:.3f} | "
+          f"{b['t_order']:.3f} | {b['real_time']/1e3:.3f} |")
+for b in one:
+    print()
+    print(f"10⁶ unknowns (`unitSquareMesh(1001)`, default ordering): assembly {b['t_assembly']:.2f} s, "
+          f"ordering {b['t_order']:.2f} s, ordering + factorisation + solves {b['t_solve']:.2f} s, "
+          f"{b['GFlop']:.1f} GFlop; total wall {b['real_time']/1e3:.2f} s.")
+PY
+/usr/bin/python3 scripts/update_benchmarks.py bench_solve.sh "$body" --command "bash scripts/bench_solve.sh"
+rm -f "$body"
