@@ -28,6 +28,7 @@
 #include "ablmg/adapt/adaptive_loop.hpp"
 #include "ablmg/adapt/convergence.hpp"
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/problem_config.hpp"
@@ -40,6 +41,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -53,17 +55,6 @@ namespace {
 
 constexpr const char* kCsvHeader =
     "cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh";
-
-double parseNumber(const std::string& text, const std::string& where) {
-  if (text == "inf" || text == "infinity") return std::numeric_limits<double>::infinity();
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) { used = 0; }
-  ABLMG_REQUIRE(used == text.size() && !text.empty(), where << ": expected a number, got '" << text << "'");
-  return v;
-}
 
 bool parseOnOff(const std::string& text, const std::string& where) {
   if (text == "on" || text == "true" || text == "1") return true;
@@ -124,7 +115,7 @@ Args parseArgs(const std::vector<std::string>& args) {
     } else if (key == "--passes-up-to") {
       a.schedule.passesUpTo = parseNumber(value(), "adapt: --passes-up-to");
     } else if (key == "--p") {
-      a.options.metric.p = parseNumber(value(), "adapt: --p");
+      a.options.metric.p = parseNumber(value(), "adapt: --p", Infinity::Allowed);
     } else if (key == "--norm") {
       a.options.metric.norm = adapt::parseErrorNorm(value());
     } else if (key == "--shape-blend") {
@@ -136,11 +127,12 @@ Args parseArgs(const std::vector<std::string>& args) {
     } else if (key == "--hmin") {
       a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
     } else if (key == "--hmax") {
-      a.options.metric.hmax = parseNumber(value(), "adapt: --hmax");
+      a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
     } else if (key == "--max-aniso") {
       a.options.metric.maxAnisotropy = parseNumber(value(), "adapt: --max-aniso");
     } else if (key == "--seed") {
-      a.options.mesh.placement.seed = std::uint64_t(parseNumber(value(), "adapt: --seed"));
+      a.options.mesh.placement.seed =
+          std::uint64_t(parseInteger(value(), "adapt: --seed", 0, std::numeric_limits<long long>::max()));
     } else if (key == "--uniform") {
       a.uniform = parseOnOff(value(), "adapt: --uniform");
     } else if (key == "--vtu") {

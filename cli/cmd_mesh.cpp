@@ -5,6 +5,7 @@
 // atomically and prints a one-line summary. Errors are exceptions: main() prints one line and
 // exits 1; outputs are written only after the mesh exists, so a failed run writes nothing.
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/stats_json.hpp"
@@ -15,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <cstdio>
 #include <iostream>
 
@@ -81,19 +83,9 @@ int runMesh(const std::vector<std::string>& args) {
     } else if (a == "--bubbles-only") {
       bubblesOnly = true;
     } else if (a == "--seed") {
-      const std::string& v = value();
-      std::size_t used = 0;
-      try {
-        seed = std::stoll(v, &used);
-      } catch (...) { used = 0; }
-      ABLMG_REQUIRE(used == v.size() && seed >= 0, "--seed: expected a non-negative integer, got '" << v << "'");
+      seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
     } else if (a == "--max-nodes") {
-      const std::string& v = value();
-      std::size_t used = 0;
-      try {
-        maxNodes = std::stoll(v, &used);
-      } catch (...) { used = 0; }
-      ABLMG_REQUIRE(used == v.size() && maxNodes > 0, "--max-nodes: expected a positive integer, got '" << v << "'");
+      maxNodes = parseInteger(value(), "mesh: --max-nodes", 1, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] == '-') {
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg mesh --help)");
     } else {

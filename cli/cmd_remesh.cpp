@@ -9,6 +9,7 @@
 // its RemeshOptions, reads the files, calls it, writes the files and prints.
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
@@ -20,6 +21,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -44,7 +46,7 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    input mesh after clamping; default 1.3 as MMG; -1 disables
   Node placement stops early on a quality plateau (plateauSteps = 10, plateauGain = 0.01; see
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
-  -v N             verbosity: -1 silent, 0 summary only, >= 1 options + summary (default 1),
+  -v N             verbosity, an integer in [-1, 10]: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write)
   --seed N         placement seed (default 1)
@@ -55,16 +57,6 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
 )";
-
-double parseNumber(const std::string& flag, const std::string& v) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(v, &used);
-  } catch (...) { used = 0; }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x), flag << ": expected a number, got '" << v << "'");
-  return x;
-}
 
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
@@ -112,15 +104,15 @@ int runRemesh(const std::vector<std::string>& args) {
     else if (a == "-out")
       out = value();
     else if (a == "-hmin")
-      hmin = parseNumber(a, value());
+      hmin = parseNumber(value(), "remesh: " + a);
     else if (a == "-hmax")
-      hmax = parseNumber(a, value());
+      hmax = parseNumber(value(), "remesh: " + a);
     else if (a == "-hgrad")
-      hgrad = parseNumber(a, value());
+      hgrad = parseNumber(value(), "remesh: " + a);
     else if (a == "-v")
-      verbose = int(parseNumber(a, value()));
+      verbose = int(parseInteger(value(), "remesh: " + a, -1, 10));
     else if (a == "--seed")
-      seed = (long long)parseNumber(a, value());
+      seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
       lattice = mesher::parseLatticeOrientation(value());
     else if (a == "--report")

@@ -14,6 +14,7 @@
 // A file whose vertices all have z = 0 is a 2D mesh (Mesh2, validated with Mesh2::validate);
 // otherwise a 3D surface mesh (checked with checkManifold; elements measured by Lee's α).
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
@@ -24,6 +25,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -56,17 +58,6 @@ struct Args {
   double e = 0.05;
 };
 
-double positiveNumber(const std::string& flag, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) { used = 0; }
-  ABLMG_REQUIRE(used == text.size() && used > 0 && std::isfinite(v) && v > 0,
-                flag << ": expected a positive number, got '" << text << "'");
-  return v;
-}
-
 Args parse(const std::vector<std::string>& args) {
   Args a;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -87,9 +78,9 @@ Args parse(const std::vector<std::string>& args) {
     } else if (f == "--metric")
       a.metricConfig = value(1), ++i;
     else if (f == "--h")
-      a.h = positiveNumber(f, value(1)), ++i;
+      a.h = parsePositiveNumber(value(1), "stats: " + f), ++i;
     else if (f == "--e")
-      a.e = positiveNumber(f, value(1)), ++i;
+      a.e = parsePositiveNumber(value(1), "stats: " + f), ++i;
     else if (f == "--metric-expr")
       a.expr = {value(1), value(2), value(3)}, i += 3;
     else if (f.starts_with("-"))

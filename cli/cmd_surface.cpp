@@ -19,6 +19,7 @@
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
 // files are written only once the mesh exists, each atomically.
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
@@ -35,6 +36,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -65,17 +67,6 @@ meshed with M2 = J^T M3 J (eq. 16) for the isotropic 3D size H (eq. 17), then ma
   --json R.json    report: options, counts, quality distribution, edge lengths, manifold check, times
   --seed N         placement seed (default 1)
 )";
-
-double parsePositive(const std::string& v, const std::string& what) {
-  std::size_t used = 0;
-  double x = 0;
-  try {
-    x = std::stod(v, &used);
-  } catch (...) { used = 0; }
-  ABLMG_REQUIRE(used == v.size() && std::isfinite(x) && x > 0,
-                what << ": expected a positive number, got '" << v << "'");
-  return x;
-}
 
 /// The extension must match and the folder must exist — checked before the (long) meshing.
 void checkOutput(const std::string& path, const char* ext, const char* flag) {
@@ -184,7 +175,7 @@ int runSurface(const std::vector<std::string>& args) {
     } else if (a == "--surface") {
       name = value();
     } else if (a == "--h") {
-      h = parsePositive(value(), "surface: --h");
+      h = parsePositiveNumber(value(), "surface: --h");
     } else if (a == "-o") {
       meshPath = value();
     } else if (a == "--vtu") {
@@ -198,7 +189,7 @@ int runSurface(const std::vector<std::string>& args) {
     } else if (a == "--json") {
       jsonPath = value();
     } else if (a == "--seed") {
-      seed = std::llround(parsePositive(value(), "surface: --seed"));
+      seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] != '-' && configPath.empty()) {
       configPath = a;
     } else {

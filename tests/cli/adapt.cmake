@@ -151,6 +151,8 @@ foreach(case
     "unknown_param|--problem wavefront --param beta=1 --target-vertices 500|unknown parameter 'beta'"
     "bad_param|--problem wavefront --param alpha --target-vertices 500|--param expects KEY=VALUE"
     "bad_number|--problem wavefront --target-vertices 500,abc|expected a number, got 'abc'"
+    "nan_number|--problem wavefront --target-vertices 500 --hgrad nan|adapt: --hgrad: expected a number, got 'nan'"
+    "inf_number|--problem wavefront --target-vertices 500 --hgrad inf|adapt: --hgrad: expected a number, got 'inf'"
     "small_target|--problem wavefront --target-vertices 500,3|must be >= 10 \\(got 3\\)"
     "bad_p|--problem wavefront --target-vertices 500 --p 0.5|p must be >= 1"
     "bad_hgrad|--problem wavefront --target-vertices 500 --hgrad 0.9|hgrad must be > 1"

@@ -19,6 +19,11 @@ ablmg_cli_failure(remesh_negative_size "negative-size.sol:8: size of vertex 3 is
 ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
                   remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
 ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+# Numbers follow one rule on every command (cli/parse_number.hpp).
+ablmg_cli_failure(remesh_fractional_verbosity "remesh: -v: expected an integer in \\[-1, 10\\], got '1.5'"
+                  remesh -in ${_data}/square.mesh -v 1.5 -out ${_out}/remesh_fractional_verbosity.mesh)
+ablmg_cli_failure(remesh_nan_hmin "remesh: -hmin: expected a number, got 'nan'"
+                  remesh -in ${_data}/square.mesh -hmin nan -out ${_out}/remesh_nan_hmin.mesh)
 add_test(NAME cli.remesh_reports_post_pass
          COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
 set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
