@@ -3,6 +3,7 @@
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,13 @@ void validate(const RemeshOptions& o) {
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "remesh options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
 }
+
+namespace {
+/// RemeshOptions::WarmStart::IfFits: the share of input edges within ±10 % of unit length from
+/// which the input counts as fitting its metric (meshes made for it: ≥ 0.9; solver hand-overs
+/// to a new metric: ≤ 0.05).
+constexpr double kWarmStartFit = 0.5;
+}  // namespace
 
 RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions& options) {
   validate(options);
@@ -64,12 +72,24 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   // 4. The input mesh and metric as the background field (validated above or by the caller;
   // the clamp, gradation and domain do not change the mesh).
   watch.restart();
+  mesher::MeshOptions meshOptions = options.mesh;
+  if (options.warmStart == RemeshOptions::WarmStart::IfFits && meshOptions.placement.warmStart.empty())
+    r.inputWithin10 = mesher::edgeLengthStats(mesher::edgeMetricLengths(mesh, metric)).within10;
+  r.warmStarted = meshOptions.placement.warmStart.empty() &&
+                  (options.warmStart == RemeshOptions::WarmStart::On ||
+                   (options.warmStart == RemeshOptions::WarmStart::IfFits && r.inputWithin10 >= kWarmStartFit));
+  if (r.warmStarted) {
+    std::vector<char> onBoundary(std::size_t(mesh.numVertices()), 0);
+    for (const auto& e : mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
+    for (int v = 0; v < mesh.numVertices(); ++v)
+      if (!onBoundary[std::size_t(v)]) meshOptions.placement.warmStart.push_back(mesh.vertices[std::size_t(v)]);
+  }
   const BackgroundMetricField field(std::move(mesh), std::move(metric),
                                     BackgroundMetricField::MeshCheck::AlreadyValidated);
   r.secondsBackgroundField = watch.seconds();
   // 5. The new mesh.
   watch.restart();
-  mesher::MeshResult m = mesher::meshDomain(domain, field, options.mesh);
+  mesher::MeshResult m = mesher::meshDomain(domain, field, meshOptions);
   r.secondsMeshing = watch.seconds();
   r.mesh = std::move(m.mesh);
   r.metric = std::move(m.metric);

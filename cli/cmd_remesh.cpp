@@ -40,6 +40,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
   -sol, -met SOL   per-vertex metric (type 1 sizes or type 3 tensors m11 m12 m22);
                    default IN.sol
+  -met-field K     with several solution fields in SOL, use field K (1-based; type 1 or 3);
+                   default: the one tensor field if there is exactly one, else the first
   -out OUT.mesh    output mesh (+ OUT.sol, the metric at the new vertices); default IN.o.mesh
   -hmin H, -hmax H clamp the metric sizes h1, h2 to [hmin, hmax]
   -hgrad G         size gradation β > 1 (metric-space, adapt/gradation.hpp), applied on the
@@ -53,6 +55,9 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see docs/method.md), long
+  --warm-start W   auto (default), on, off: seed the placement with the input's interior
+                   vertices (auto: when half of its edges are already within 10 % of unit
+                   length, e.g. a mesh remeshed to its own metric; see adapt/remesh.hpp)
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
@@ -61,12 +66,18 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
 /// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
-std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol) {
-  auto solRead = std::async(std::launch::async, [&sol] { return io::readSol(sol); });
+/// The reader's warnings (repaired quirks of the file) are printed to stderr, once the mesh is
+/// known valid, unless verbose < 0.
+std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field,
+                                                  int verbose) {
+  auto solRead = std::async(std::launch::async, [&sol, field] { return io::readSol(sol, -1, field); });
   Mesh2 mesh;
+  std::vector<std::string> warnings;
   bool valid = false;
   try {
-    mesh = io::readMesh(in);
+    io::MeshFile file = io::readMeshFile(in);
+    warnings = std::move(file.warnings);
+    mesh = std::move(file.mesh);
     valid = mesh.validate().ok;
   } catch (...) {
     solRead.wait();
@@ -77,17 +88,20 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   try {
     metrics = solRead.get();
   } catch (...) { solOk = false; }
-  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices());
+  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices(), field);
   if (!valid) mesh.requireValid(in);
+  if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
+    for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};
 }
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
-  int verbose = 1;
+  int verbose = 1, metField = 0;
   long long seed = 1;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
+  adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -103,6 +117,8 @@ int runRemesh(const std::vector<std::string>& args) {
       sol = value();
     else if (a == "-out")
       out = value();
+    else if (a == "-met-field")
+      metField = int(parseInteger(value(), "remesh: " + a, 1, 64));
     else if (a == "-hmin")
       hmin = parseNumber(value(), "remesh: " + a);
     else if (a == "-hmax")
@@ -115,7 +131,14 @@ int runRemesh(const std::vector<std::string>& args) {
       seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
       lattice = mesher::parseLatticeOrientation(value());
-    else if (a == "--report")
+    else if (a == "--warm-start") {
+      const std::string& w = value();
+      ABLMG_REQUIRE(w == "auto" || w == "on" || w == "off",
+                    "--warm-start: expected auto, on or off, got '" << w << "'");
+      warmStart = w == "on"    ? adapt::RemeshOptions::WarmStart::On
+                  : w == "off" ? adapt::RemeshOptions::WarmStart::Off
+                               : adapt::RemeshOptions::WarmStart::IfFits;
+    } else if (a == "--report")
       reportPath = value();
     else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
@@ -142,6 +165,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.name = in;
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
+  options.warmStart = warmStart;
   nlohmann::json resolved;
   {
     resolved = {{"in", in},
@@ -152,6 +176,10 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
                 {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
                 {"v", verbose},
+                {"warmStart", warmStart == adapt::RemeshOptions::WarmStart::On    ? "on"
+                              : warmStart == adapt::RemeshOptions::WarmStart::Off ? "off"
+                                                                                  : "auto"},
+                {"metField", metField},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
@@ -160,7 +188,7 @@ int runRemesh(const std::vector<std::string>& args) {
 
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
   Stopwatch watch;
-  auto inputs = readInputs(in, sol);
+  auto inputs = readInputs(in, sol, metField, verbose);
   const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
@@ -176,6 +204,8 @@ int runRemesh(const std::vector<std::string>& args) {
       report["stats"] = meshStatsJson(r.stats);
       report["stats"]["clampedMetrics"] = r.clampedMetrics;
       report["stats"]["gradedMetrics"] = r.gradation.corrections;
+      report["stats"]["warmStarted"] = r.warmStarted;
+      report["stats"]["inputWithin10"] = r.inputWithin10;
       report["inVertices"] = inVertices;
       report["vertices"] = r.mesh.numVertices();
       report["triangles"] = r.mesh.numTriangles();
@@ -203,6 +233,8 @@ int runRemesh(const std::vector<std::string>& args) {
               << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
               << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
               << " collapses), validation " << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
+    std::cout << "ablmg remesh: " << (r.warmStarted ? "warm start" : "cold start (lattice)")
+              << ", input edges within 10 %: " << r.inputWithin10 << "\n";
   }
   if (verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, "

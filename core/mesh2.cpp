@@ -112,15 +112,39 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
     if (bnd[i] == bnd[i - 1])
       problem("boundary edge (" + std::to_string(bnd[i][0]) + ", " + std::to_string(bnd[i][1]) + ") is listed twice");
   std::vector<char> bndUsed(bnd.size(), 0);
+  // Interface edges, undirected, sorted; each must turn out to be an interior edge.
+  std::vector<std::array<int, 2>> itf;
+  itf.reserve(interfaceEdges.size());
+  for (const auto& e : interfaceEdges) {
+    if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
+      problem("interface edge (" + std::to_string(e.a) + ", " + std::to_string(e.b) +
+              ") is out of range or degenerate");
+      return r;
+    }
+    itf.push_back({std::min(e.a, e.b), std::max(e.a, e.b)});
+  }
+  std::sort(itf.begin(), itf.end());
+  for (std::size_t i = 1; i < itf.size(); ++i)
+    if (itf[i] == itf[i - 1])
+      problem("interface edge (" + std::to_string(itf[i][0]) + ", " + std::to_string(itf[i][1]) + ") is listed twice");
+  std::vector<char> itfUsed(itf.size(), 0);
+  const auto refOf = [&](int t) { return std::size_t(t) < triangleRefs.size() ? triangleRefs[std::size_t(t)] : 0; };
   const auto h = halfEdges(*this);
   for (std::size_t i = 0; i < h.size();) {
     std::size_t j = i;
     while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
     const std::size_t count = j - i;
     const auto name = [&] { return "edge (" + std::to_string(h[i].lo) + ", " + std::to_string(h[i].hi) + ")"; };
+    const auto inItf = std::lower_bound(itf.begin(), itf.end(), std::array<int, 2>{h[i].lo, h[i].hi});
+    const bool isItf = inItf != itf.end() && *inItf == std::array<int, 2>{h[i].lo, h[i].hi};
+    if (isItf) itfUsed[std::size_t(inItf - itf.begin())] = 1;
     if (count == 2 && h[i].forward != h[i + 1].forward) {
-      // interior edge, consistently oriented
+      // interior edge, consistently oriented; a change of subdomain must be an interface edge
+      if (!isItf && refOf(h[i].tri) != refOf(h[i + 1].tri))
+        problem(name() + " separates subdomains " + std::to_string(refOf(h[i].tri)) + " and " +
+                std::to_string(refOf(h[i + 1].tri)) + " but is not an interface edge");
     } else if (count == 1) {
+      if (isItf) problem("interface " + name() + " lies in one triangle (a boundary edge, not an interior one)");
       const std::array<int, 2> dir =
           h[i].forward ? std::array<int, 2>{h[i].lo, h[i].hi} : std::array<int, 2>{h[i].hi, h[i].lo};
       const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
@@ -143,6 +167,26 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
       problem("boundary edge (" + std::to_string(bnd[k][0]) + ", " + std::to_string(bnd[k][1]) +
               ") is not the edge of exactly one triangle on its left");
     }
+  for (std::size_t k = 0; k < itf.size(); ++k)
+    if (!itfUsed[k])
+      problem("interface edge (" + std::to_string(itf[k][0]) + ", " + std::to_string(itf[k][1]) +
+              ") is not an edge of the mesh");
+  for (const auto* list : {&corners, &requiredVertices})
+    for (int v : *list)
+      if (v < 0 || v >= nv) {
+        problem((list == &corners ? "corner " : "required vertex ") + std::to_string(v) + " is out of range");
+        return r;
+      }
+  if (!requiredEdges.empty() || !ridges.empty()) {
+    const auto all = edges();
+    for (const auto* list : {&requiredEdges, &ridges})
+      for (const auto& e : *list) {
+        const std::array<int, 2> k{std::min(e[0], e[1]), std::max(e[0], e[1])};
+        if (!std::binary_search(all.begin(), all.end(), k))
+          problem(std::string(list == &ridges ? "ridge" : "required edge") + " (" + std::to_string(e[0]) + ", " +
+                  std::to_string(e[1]) + ") is not an edge of the mesh");
+      }
+  }
   if (expectedArea) {
     const double rel = std::abs(r.area - *expectedArea) / std::abs(*expectedArea);
     if (!(rel <= areaTolerance)) {

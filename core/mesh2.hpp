@@ -6,7 +6,13 @@
 ///  - every interior edge lies in exactly two triangles, with opposite orientations;
 ///  - the edges lying in one triangle are exactly `boundaryEdges` (each once), so the
 ///    boundary is closed and the mesh covers its domain once: no gaps, no overlaps;
-///  - every vertex is used by a triangle; coordinates are finite.
+///  - every vertex is used by a triangle; coordinates are finite;
+///  - `interfaceEdges` are interior edges (each in two triangles, listed once, none a boundary
+///    edge), and every edge between two triangles of different `triangleRefs` is one of them:
+///    the internal boundaries between subdomains (material interfaces) and interior edges a
+///    file marked (a medit `Edges` entry inside the domain);
+///  - `corners`, `requiredVertices`, `requiredEdges`, `ridges` name existing vertices / edges.
+/// Subdomain k is the set of triangles with triangleRefs == k (0 for all if empty).
 /// Ids are 0-based int; files (medit) are 1-based and io/ converts.
 #include "ablmg/core/vec2.hpp"
 
@@ -36,6 +42,15 @@ class Mesh2 {
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise
   std::vector<int> triangleRefs;              ///< optional, one per triangle (0 if empty)
   std::vector<BoundaryEdge> boundaryEdges;
+  /// Interior edges (in two triangles) that carry a ref: subdomain interfaces, marked lines.
+  /// a→b in either direction.
+  std::vector<BoundaryEdge> interfaceEdges;
+  /// Features a remesh keeps (medit Corners, RequiredVertices, RequiredEdges, Ridges): vertex
+  /// ids, and edges as vertex pairs (either order). Corners and required vertices stay mesh
+  /// vertices at the same coordinates; a required edge stays an edge (no vertex inserted);
+  /// a ridge's end vertices are kept as corners (the feature line is not cut by a chord).
+  std::vector<int> corners, requiredVertices;
+  std::vector<std::array<int, 2>> requiredEdges, ridges;
 
   int numVertices() const { return int(vertices.size()); }
   int numTriangles() const { return int(triangles.size()); }

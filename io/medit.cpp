@@ -8,11 +8,13 @@
 #include <cctype>
 #include <charconv>
 #include <climits>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <future>
 #include <ostream>
 #include <string_view>
+#include <unordered_map>
 
 namespace ablmg::io {
 namespace {
@@ -58,9 +60,29 @@ void readHeader(TextScanner& s, int& dim, bool dimRequired) {
   }
 }
 
+/// The feature sections as the file gives them: vertex indices (0-based) and indices into
+/// the file's Edges section (0-based), with the line of each section for messages.
+struct FeatureSections {
+  std::vector<int> corners, requiredVertices, requiredEdgeIds, ridgeIds;
+  int requiredEdgesLine = 0, ridgesLine = 0;
+};
+
+/// A feature section: a count, then that many 1-based indices in [1, max]; 0-based out.
+void readIndexSection(TextScanner& s, const std::string& kw, long max, std::vector<int>& out) {
+  const long n = readCount(s, (kw + " count").c_str(), 1);
+  out.reserve(out.size() + std::size_t(n));
+  for (long i = 0; i < n; ++i) {
+    const long id = s.nextInt("index", LONG_MIN, LONG_MAX);
+    ABLMG_REQUIRE(id >= 1 && id <= max,
+                  s.where() << kw << " entry " << i + 1 << ": index " << id << " out of range [1, " << max << "]");
+    out.push_back(int(id - 1));
+  }
+}
+
 /// The sections of a .mesh file, in the file's order and orientation. With `zs` null, a
 /// Dimension 3 file must be planar (z = 0); otherwise every z is stored there (0 in Dimension 2).
-Mesh2 parseSections(std::string text, const std::string& name, std::vector<double>* zs, int& dim) {
+Mesh2 parseSections(std::string text, const std::string& name, std::vector<double>* zs, int& dim,
+                    FeatureSections* features = nullptr) {
   TextScanner s(std::move(text), name);
   readHeader(s, dim, true);
   Mesh2 mesh;
@@ -117,6 +139,16 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
           mesh.boundaryEdges.push_back({v[0], v[1], ref});
         }
       }
+    } else if (features && (kw == "corners" || kw == "requiredvertices")) {
+      ABLMG_REQUIRE(haveVertices, s.where() << "section " << kw << " before Vertices");
+      readIndexSection(s, kw == "corners" ? "Corners" : "RequiredVertices", mesh.numVertices(),
+                       kw == "corners" ? features->corners : features->requiredVertices);
+    } else if (features && (kw == "requirededges" || kw == "ridges")) {
+      // indices into Edges, which may come later: checked once the file is read
+      const bool req = kw == "requirededges";
+      (req ? features->requiredEdgesLine : features->ridgesLine) = s.line();
+      readIndexSection(s, req ? "RequiredEdges" : "Ridges", INT_MAX - 1,
+                       req ? features->requiredEdgeIds : features->ridgeIds);
     } else if (kw == "dimension" || kw == "meshversionformatted") {
       ABLMG_REQUIRE(false, s.where() << "repeated header keyword '" << kw << "'");
     } else {
@@ -132,40 +164,157 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
   return mesh;
 }
 
+/// Drops triangles repeating an earlier one's vertex set (any order); returns how many.
+/// Triangles are grouped by their smallest vertex (counting sort, O(n)) and compared there.
+long dropDuplicateTriangles(Mesh2& mesh) {
+  const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+  const auto sorted = [&](std::size_t t) {
+    auto v = mesh.triangles[t];
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  std::vector<int> rowStart(nv + 1, 0), ids(nt);
+  for (std::size_t t = 0; t < nt; ++t) ++rowStart[std::size_t(sorted(t)[0]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) rowStart[v + 1] += rowStart[v];
+  std::vector<int> fill(rowStart.begin(), rowStart.end() - 1);
+  for (std::size_t t = 0; t < nt; ++t) ids[std::size_t(fill[std::size_t(sorted(t)[0])]++)] = int(t);
+  std::vector<char> drop(nt, 0);
+  long dropped = 0;
+  for (std::size_t v = 0; v < nv; ++v)
+    for (int i = rowStart[v]; i < rowStart[v + 1]; ++i)
+      for (int j = rowStart[v]; j < i; ++j)
+        if (!drop[std::size_t(ids[std::size_t(j)])] &&
+            sorted(std::size_t(ids[std::size_t(i)])) == sorted(std::size_t(ids[std::size_t(j)]))) {
+          drop[std::size_t(std::max(ids[std::size_t(i)], ids[std::size_t(j)]))] = 1;
+          ++dropped;
+          break;
+        }
+  if (dropped == 0) return 0;
+  std::size_t k = 0;
+  for (std::size_t t = 0; t < nt; ++t)
+    if (!drop[t]) {
+      mesh.triangles[k] = mesh.triangles[t];
+      mesh.triangleRefs[k] = mesh.triangleRefs[t];
+      ++k;
+    }
+  mesh.triangles.resize(k);
+  mesh.triangleRefs.resize(k);
+  return dropped;
+}
+
+std::uint64_t edgeKey(int a, int b) {
+  return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+}
+
+/// The file's Edges sorted into Mesh2's lists, as MMG reads them: an edge in one triangle is a
+/// boundary edge (oriented with the triangle on its left), an edge in two is an interface edge;
+/// boundary edges the file does not list are added with ref 0, and so are edges between
+/// triangles of different refs. Repeated edges are merged (the first ref kept). An edge in no
+/// triangle is an error. Listed edges keep the file's order; added ones follow in triangle order.
+/// Returns the number of repeated and of added edges through the counters.
+void classifyEdges(Mesh2& mesh, const std::string& name, const std::vector<std::uint64_t>& fileKeys, long& repeated,
+                   long& addedBoundary, long& addedInterface) {
+  std::unordered_map<std::uint64_t, int> firstOf;  // edge key -> index of its first listing
+  firstOf.reserve(mesh.boundaryEdges.size());
+  std::vector<BoundaryEdge> listed;
+  listed.reserve(mesh.boundaryEdges.size());
+  std::vector<int> kind;  // per listed edge: 0 none yet, 1 boundary, 2 interface
+  for (std::size_t i = 0; i < mesh.boundaryEdges.size(); ++i) {
+    if (!firstOf.emplace(fileKeys[i], int(listed.size())).second) {
+      ++repeated;
+      continue;
+    }
+    listed.push_back(mesh.boundaryEdges[i]);
+  }
+  kind.assign(listed.size(), 0);
+  const auto nb = mesh.triangleNeighbours();
+  std::vector<BoundaryEdge> extraBoundary, extraInterface;
+  const auto refOf = [&](int t) { return mesh.triangleRefs[std::size_t(t)]; };
+  for (int t = 0; t < mesh.numTriangles(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles[std::size_t(t)][(k + 1) % 3], b = mesh.triangles[std::size_t(t)][(k + 2) % 3];
+      const int u = nb[std::size_t(t)][k];
+      if (u >= 0 && u < t) continue;  // interior edge, seen from its other triangle
+      const auto it = firstOf.find(edgeKey(a, b));
+      if (it != firstOf.end()) {
+        auto& e = listed[std::size_t(it->second)];
+        kind[std::size_t(it->second)] = u < 0 ? 1 : 2;
+        if (u < 0) e.a = a, e.b = b;  // domain on the left
+      } else if (u < 0) {
+        extraBoundary.push_back({a, b, 0});
+      } else if (refOf(u) != refOf(t)) {
+        extraInterface.push_back({a, b, 0});
+      }
+    }
+  mesh.boundaryEdges.clear();
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    ABLMG_REQUIRE(kind[i] != 0, name << ": edge (" << listed[i].a + 1 << ", " << listed[i].b + 1
+                                     << ") of Edges is a side of no triangle");
+    (kind[i] == 1 ? mesh.boundaryEdges : mesh.interfaceEdges).push_back(listed[i]);
+  }
+  addedBoundary = long(extraBoundary.size());
+  addedInterface = long(extraInterface.size());
+  mesh.boundaryEdges.insert(mesh.boundaryEdges.end(), extraBoundary.begin(), extraBoundary.end());
+  mesh.interfaceEdges.insert(mesh.interfaceEdges.end(), extraInterface.begin(), extraInterface.end());
+}
+
+/// RequiredEdges / Ridges: indices into the file's Edges → vertex pairs.
+void resolveEdgeIds(const std::vector<int>& ids, const std::vector<BoundaryEdge>& fileEdges, const std::string& name,
+                    int line, const char* what, std::vector<std::array<int, 2>>& out) {
+  for (int id : ids) {
+    ABLMG_REQUIRE(std::size_t(id) < fileEdges.size(), name << ":" << line << ": " << what << " names edge " << id + 1
+                                                           << " but Edges has " << fileEdges.size());
+    out.push_back({fileEdges[std::size_t(id)].a, fileEdges[std::size_t(id)].b});
+  }
+}
+
+std::string plural(long n, const char* word) { return std::to_string(n) + " " + word + (n == 1 ? "" : "s"); }
+
 /// parseMesh on a string it owns (readMesh moves the file's text in: no copy).
-Mesh2 meshFromText(std::string text, const std::string& name) {
+MeshFile meshFromText(std::string text, const std::string& name) {
   int dim = 2;
-  Mesh2 mesh = parseSections(std::move(text), name, nullptr, dim);
+  FeatureSections f;
+  MeshFile file;
+  Mesh2& mesh = file.mesh;
+  mesh = parseSections(std::move(text), name, nullptr, dim, &f);
+  for (int v : f.corners) mesh.corners.push_back(v);
+  for (int v : f.requiredVertices) mesh.requiredVertices.push_back(v);
+  resolveEdgeIds(f.requiredEdgeIds, mesh.boundaryEdges, name, f.requiredEdgesLine, "RequiredEdges", mesh.requiredEdges);
+  resolveEdgeIds(f.ridgeIds, mesh.boundaryEdges, name, f.ridgesLine, "Ridges", mesh.ridges);
   // Orientation: triangles counter-clockwise (the format does not fix one).
   for (auto& t : mesh.triangles) {
     const Vec2 a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
     if (cross(b - a, c - a) < 0) std::swap(t[1], t[2]);
   }
-  // Boundary edges a→b with the domain on the left: the triangle using the edge runs a→b.
-  // Directed triangle edges grouped by their first vertex (counting sort, O(n)): the rows are
-  // a vertex's few outgoing edges, scanned linearly.
-  if (mesh.boundaryEdges.empty()) return mesh;
-  const std::size_t nv = mesh.vertices.size();
-  std::vector<int> rowStart(nv + 1, 0), heads(3 * mesh.triangles.size());
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) ++rowStart[std::size_t(t[k]) + 1];
-  for (std::size_t v = 0; v < nv; ++v) rowStart[v + 1] += rowStart[v];
-  {
-    std::vector<int> fill(rowStart.begin(), rowStart.end() - 1);
-    for (const auto& t : mesh.triangles)
-      for (int k = 0; k < 3; ++k) heads[std::size_t(fill[std::size_t(t[k])]++)] = t[(k + 1) % 3];
+  if (mesh.triangles.empty()) {  // a boundary discretization: Edges as given, repeats merged
+    std::unordered_map<std::uint64_t, int> seen;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < mesh.boundaryEdges.size(); ++i)
+      if (seen.emplace(edgeKey(mesh.boundaryEdges[i].a, mesh.boundaryEdges[i].b), 0).second)
+        mesh.boundaryEdges[k++] = mesh.boundaryEdges[i];
+    if (k < mesh.boundaryEdges.size())
+      file.warnings.push_back(name + ": " + plural(long(mesh.boundaryEdges.size() - k), "repeated edge") + " merged");
+    mesh.boundaryEdges.resize(k);
+    return file;
   }
-  const auto has = [&](int a, int b) {
-    return std::find(heads.begin() + rowStart[std::size_t(a)], heads.begin() + rowStart[std::size_t(a) + 1], b) !=
-           heads.begin() + rowStart[std::size_t(a) + 1];
-  };
-  for (auto& e : mesh.boundaryEdges)
-    if (!has(e.a, e.b) && has(e.b, e.a)) std::swap(e.a, e.b);
-  return mesh;
+  if (const long d = dropDuplicateTriangles(mesh); d > 0)
+    file.warnings.push_back(name + ": " + plural(d, "repeated triangle") + " merged");
+  std::vector<std::uint64_t> keys;
+  keys.reserve(mesh.boundaryEdges.size());
+  for (const auto& e : mesh.boundaryEdges) keys.push_back(edgeKey(e.a, e.b));
+  long repeated = 0, addedBoundary = 0, addedInterface = 0;
+  classifyEdges(mesh, name, keys, repeated, addedBoundary, addedInterface);
+  if (repeated > 0) file.warnings.push_back(name + ": " + plural(repeated, "repeated edge") + " merged");
+  if (addedBoundary > 0)
+    file.warnings.push_back(name + ": " + plural(addedBoundary, "boundary edge") + " not in Edges, added with ref 0");
+  if (addedInterface > 0)
+    file.warnings.push_back(name + ": " + plural(addedInterface, "edge") +
+                            " between subdomains not in Edges, added as interface edges with ref 0");
+  return file;
 }
 
 /// parseSol on a string it owns (readSol moves the file's text in).
-std::vector<Metric2> solFromText(std::string text, const std::string& name, int expectedVertices) {
+std::vector<Metric2> solFromText(std::string text, const std::string& name, int expectedVertices, int field) {
   TextScanner s(std::move(text), name);
   int dim = 2;
   readHeader(s, dim, false);
@@ -189,27 +338,39 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
     std::vector<int> types(nsol);
     int perVertex = 0;
     const int tensorSize = dim == 2 ? 3 : 6;
+    std::vector<int> offsets;  // first value of each field within a vertex's values
     for (auto& t : types) {
       t = int(s.nextInt("solution type (1 scalar, 2 vector, 3 tensor)", 1, 3));
+      offsets.push_back(perVertex);
       perVertex += t == 1 ? 1 : t == 2 ? dim : tensorSize;
     }
-    ABLMG_REQUIRE(types[0] == 1 || types[0] == 3,
-                  s.where() << "first solution field has type 2 (vector); a metric needs type 1 (size) or 3 (tensor)");
+    ABLMG_REQUIRE(field <= nsol, s.where() << "field " << field << " asked for, but the file has " << nsol
+                                           << " solution field" << (nsol == 1 ? "" : "s"));
+    int chosen = field - 1;  // 0-based
+    if (field <= 0) {
+      const long tensors = std::count(types.begin(), types.end(), 3);
+      chosen = tensors == 1 ? int(std::find(types.begin(), types.end(), 3) - types.begin()) : 0;
+    }
+    const int type = types[std::size_t(chosen)], offset = offsets[std::size_t(chosen)];
+    ABLMG_REQUIRE(type == 1 || type == 3, s.where() << "solution field " << chosen + 1
+                                                    << " has type 2 (vector); a metric needs type 1 (size) or 3 "
+                                                       "(tensor) (choose a field)");
     ABLMG_REQUIRE(
         n <= long(s.size() / (2 * std::size_t(perVertex)) + 1),
         name << ":" << countLine << ": solution count " << n << " is more than the file can hold (truncated?)");
     std::vector<Metric2> out;
     out.reserve(n);
-    std::vector<double> v(perVertex);
+    std::vector<double> all(perVertex);
     for (long i = 0; i < n; ++i) {
       int firstLine = 0;
       for (int k = 0; k < perVertex; ++k) {
-        v[k] = s.nextDouble(types[0] == 1 ? "size value" : "tensor entry");
-        if (k == 0) firstLine = s.line();
+        all[k] = s.nextDouble(k < offset ? "solution value" : type == 1 ? "size value" : "tensor entry");
+        if (k == offset) firstLine = s.line();
       }
+      const double* v = all.data() + offset;
       // "<file>:<line>: " is built only for a message, not for every vertex.
       const auto at = [&] { return name + ":" + std::to_string(firstLine) + ": "; };
-      if (types[0] == 1) {
+      if (type == 1) {
         ABLMG_REQUIRE(v[0] > 0, at() << "size of vertex " << i + 1 << " is " << v[0] << ", must be > 0");
         // A size so small or large that 1/h² (or h²) over- or underflows (1e-200, 1e200) has
         // no SPD tensor: the error names the line, not only Metric2's "metric: sizes ...".
@@ -245,9 +406,13 @@ std::vector<Metric2> solFromText(std::string text, const std::string& name, int 
 
 }  // namespace
 
-Mesh2 parseMesh(const std::string& text, const std::string& name) { return meshFromText(text, name); }
+MeshFile parseMeshFile(const std::string& text, const std::string& name) { return meshFromText(text, name); }
 
-Mesh2 readMesh(const std::string& path) { return meshFromText(readTextFile(path), path); }
+MeshFile readMeshFile(const std::string& path) { return meshFromText(readTextFile(path), path); }
+
+Mesh2 parseMesh(const std::string& text, const std::string& name) { return meshFromText(text, name).mesh; }
+
+Mesh2 readMesh(const std::string& path) { return meshFromText(readTextFile(path), path).mesh; }
 
 SurfaceMeshFile parseSurfaceMesh(const std::string& text, const std::string& name) {
   SurfaceMeshFile f;
@@ -262,12 +427,12 @@ SurfaceMeshFile parseSurfaceMesh(const std::string& text, const std::string& nam
 
 SurfaceMeshFile readSurfaceMesh(const std::string& path) { return parseSurfaceMesh(readTextFile(path), path); }
 
-std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices) {
-  return solFromText(text, name, expectedVertices);
+std::vector<Metric2> parseSol(const std::string& text, const std::string& name, int expectedVertices, int field) {
+  return solFromText(text, name, expectedVertices, field);
 }
 
-std::vector<Metric2> readSol(const std::string& path, int expectedVertices) {
-  return solFromText(readTextFile(path), path, expectedVertices);
+std::vector<Metric2> readSol(const std::string& path, int expectedVertices, int field) {
+  return solFromText(readTextFile(path), path, expectedVertices, field);
 }
 
 namespace {
@@ -319,13 +484,36 @@ std::string formatMesh(const Mesh2& mesh) {
   out.text("Vertices\n").num(mesh.vertices.size()).ch('\n');
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
     out.num(mesh.vertices[i].x()).ch(' ').num(mesh.vertices[i].y()).ch(' ').num(refOr0(mesh.vertexRefs, i)).ch('\n');
-  out.text("\nEdges\n").num(mesh.boundaryEdges.size()).ch('\n');
-  for (const auto& e : mesh.boundaryEdges) out.num(e.a + 1).ch(' ').num(e.b + 1).ch(' ').num(e.ref).ch('\n');
+  // Edges: boundary, then interface, then required edges and ridges not among them (ref 0).
+  std::vector<BoundaryEdge> edges = mesh.boundaryEdges;
+  edges.insert(edges.end(), mesh.interfaceEdges.begin(), mesh.interfaceEdges.end());
+  std::vector<std::vector<int>> edgeIds(2);  // RequiredEdges, Ridges as 1-based indices into Edges
+  if (!mesh.requiredEdges.empty() || !mesh.ridges.empty()) {
+    std::unordered_map<std::uint64_t, int> index;
+    for (std::size_t i = 0; i < edges.size(); ++i) index.emplace(edgeKey(edges[i].a, edges[i].b), int(i) + 1);
+    for (int l = 0; l < 2; ++l)
+      for (const auto& e : l == 0 ? mesh.requiredEdges : mesh.ridges) {
+        auto [it, added] = index.emplace(edgeKey(e[0], e[1]), int(edges.size()) + 1);
+        if (added) edges.push_back({e[0], e[1], 0});
+        edgeIds[std::size_t(l)].push_back(it->second);
+      }
+  }
+  out.text("\nEdges\n").num(edges.size()).ch('\n');
+  for (const auto& e : edges) out.num(e.a + 1).ch(' ').num(e.b + 1).ch(' ').num(e.ref).ch('\n');
   out.text("\nTriangles\n").num(mesh.triangles.size()).ch('\n');
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tr = mesh.triangles[t];
     out.num(tr[0] + 1).ch(' ').num(tr[1] + 1).ch(' ').num(tr[2] + 1).ch(' ').num(refOr0(mesh.triangleRefs, t)).ch('\n');
   }
+  const auto section = [&](const char* kw, const std::vector<int>& ids, int plus) {
+    if (ids.empty()) return;
+    out.text("\n").text(kw).ch('\n').num(ids.size()).ch('\n');
+    for (int i : ids) out.num(i + plus).ch('\n');
+  };
+  section("Corners", mesh.corners, 1);
+  section("RequiredVertices", mesh.requiredVertices, 1);
+  section("RequiredEdges", edgeIds[0], 0);
+  section("Ridges", edgeIds[1], 0);
   out.text("\nEnd\n");
   return out.take();
 }

@@ -8,6 +8,7 @@
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <gtest/gtest.h>
 
@@ -274,4 +275,31 @@ TEST(Remesh, TheHeadersSolverLoopRuns) {
   EXPECT_NEAR(double(vertices[2]) / vertices[1], 1.0, 0.05);
   EXPECT_NEAR(double(vertices[3]) / vertices[2], 4.0, 0.6);
   EXPECT_NEAR(double(vertices[4]) / vertices[3], 4.0, 0.6);
+}
+
+// A mesh remeshed to its own metric (as a solver hands over a converged pair) starts from its
+// own vertices and keeps their fit; a hand-over to a new metric (half the sizes) starts from
+// the lattice. The warm start must not lose edges within ±10 % against the cold start.
+TEST(Remesh, WarmStartsOnlyWhenTheInputFitsItsMetric) {
+  const Mesh2 in = inputMesh();
+  RemeshOptions o;
+  o.hgrad = -1;
+  const RemeshResult first = remesh(in, isotropic(in, 0.12), o);  // a mesh made for h = 0.12
+  EXPECT_FALSE(first.warmStarted);
+  EXPECT_LT(first.inputWithin10, 0.5);
+  const std::vector<Metric2> own(std::size_t(first.mesh.numVertices()), Metric2::isotropic(0.12));
+  const RemeshResult warm = remesh(first.mesh, own, o);
+  EXPECT_TRUE(warm.warmStarted);
+  EXPECT_GE(warm.inputWithin10, 0.5);
+  o.warmStart = RemeshOptions::WarmStart::Off;
+  const RemeshResult cold = remesh(first.mesh, own, o);
+  EXPECT_FALSE(cold.warmStarted);
+  EXPECT_TRUE(warm.mesh.validate().ok);
+  const auto within = [](const RemeshResult& r) {
+    return mesher::edgeLengthStats(mesher::edgeMetricLengths(r.mesh, r.metric)).within10;
+  };
+  EXPECT_GE(within(warm), within(cold) - 0.01);
+  o.warmStart = RemeshOptions::WarmStart::IfFits;
+  const std::vector<Metric2> finer(std::size_t(first.mesh.numVertices()), Metric2::isotropic(0.06));
+  EXPECT_FALSE(remesh(first.mesh, finer, o).warmStarted);
 }

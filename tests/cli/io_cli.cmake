@@ -45,7 +45,7 @@ ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short 
 ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/truncated.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_both_bad.mesh)
 ablmg_cli_failure(remesh_missing_sol "no_such.sol: cannot open" remesh -in ${_data}/square.mesh -sol ${_data}/no_such.sol -out ${_out}/remesh_missing_sol.mesh)
 file(WRITE ${_out}/overlap.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
-                                "Triangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 5 0\nEnd\n")
+                                "Edges\n4\n1 2 1\n2 3 1\n3 4 1\n4 1 1\nTriangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 3 0\nEnd\n")
 ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh: " remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
 ablmg_cli_failure(remesh_invalid_mesh_bad_sol "nonspd.sol:13: tensor of vertex 5" remesh -in ${_out}/overlap.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_invalid_mesh_bad_sol.mesh)
 # Two boundary loops touching at vertex 3 (a valid mesh, but not a domain).

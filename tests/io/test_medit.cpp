@@ -382,3 +382,145 @@ TEST(Medit, Dimension3PlanarTensorSol) {
       io::parseSol("MeshVersionFormatted 2\nDimension 3\nSolAtVertices\n1\n1 3\n4 1 0.5 9 0 1\nEnd\n", "d3.sol"),
       InputError);
 }
+
+// --- Files as tools write them: partial or repeated Edges, subdomains, features, multi-field .sol.
+
+/// Unit square split into 4 triangles around its centre (vertex 5); triangle refs 1 1 2 2.
+static std::string squareWith(const std::string& edges, const std::string& extra = "",
+                              const std::string& triangles = "4\n1 2 5 1\n2 3 5 1\n3 4 5 2\n4 1 5 2\n") {
+  return "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n" + edges +
+         "Triangles\n" + triangles + extra + "End\n";
+}
+
+TEST(Medit, PartialEdgesAreCompletedWithRefZero) {
+  const io::MeshFile f = io::parseMeshFile(squareWith("Edges\n1\n2 1 7\n"), "partial.mesh");
+  const Mesh2& m = f.mesh;
+  ASSERT_EQ(m.boundaryEdges.size(), 4u);
+  EXPECT_EQ(m.boundaryEdges[0].ref, 7);
+  EXPECT_EQ(m.boundaryEdges[0].a, 0);  // reoriented: domain on the left
+  for (std::size_t e = 1; e < 4; ++e) EXPECT_EQ(m.boundaryEdges[e].ref, 0);
+  // triangles 2-3-5 (ref 1) and 3-4-5 (ref 2) meet on 3-5; 1-5 separates refs 2 and 1
+  EXPECT_EQ(m.interfaceEdges.size(), 2u);
+  EXPECT_TRUE(m.validate(1.0).ok) << m.validate().firstProblem;
+  ASSERT_EQ(f.warnings.size(), 2u);
+  EXPECT_NE(f.warnings[0].find("partial.mesh: 3 boundary edges not in Edges"), std::string::npos) << f.warnings[0];
+  EXPECT_NE(f.warnings[1].find("2 edges between subdomains"), std::string::npos) << f.warnings[1];
+  // No Edges section at all: every boundary edge derived.
+  const io::MeshFile g = io::parseMeshFile(squareWith(""), "none.mesh");
+  EXPECT_EQ(g.mesh.boundaryEdges.size(), 4u);
+  EXPECT_TRUE(g.mesh.validate(1.0).ok) << g.mesh.validate().firstProblem;
+}
+
+TEST(Medit, RepeatedEdgesAndTrianglesAreMergedWithAWarning) {
+  const std::string edges = "Edges\n6\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n2 1 9\n3 4 3\n";
+  const std::string tris = "5\n1 2 5 1\n2 3 5 1\n3 4 5 2\n4 1 5 2\n5 3 2 1\n";
+  const io::MeshFile f = io::parseMeshFile(squareWith(edges, "", tris), "dup.mesh");
+  EXPECT_EQ(f.mesh.numTriangles(), 4);
+  ASSERT_EQ(f.mesh.boundaryEdges.size(), 4u);
+  EXPECT_EQ(f.mesh.boundaryEdges[0].ref, 1);  // the first listing's ref
+  EXPECT_TRUE(f.mesh.validate(1.0).ok) << f.mesh.validate().firstProblem;
+  std::string all;
+  for (const auto& w : f.warnings) all += w + "\n";
+  EXPECT_NE(all.find("dup.mesh: 1 repeated triangle merged"), std::string::npos) << all;
+  EXPECT_NE(all.find("dup.mesh: 2 repeated edges merged"), std::string::npos) << all;
+}
+
+TEST(Medit, InteriorEdgesInEdgesAreInterfaceEdges) {
+  // Listed interior edges: 1-5 (ref 11) between triangles 4-1-5 (ref 2) and 1-2-5 (ref 1), and
+  // 2-5 (ref 12) between two ref-1 triangles (a marked line inside one subdomain).
+  const io::MeshFile f = io::parseMeshFile(squareWith("Edges\n2\n1 5 11\n2 5 12\n"), "itf.mesh");
+  const Mesh2& m = f.mesh;
+  ASSERT_EQ(m.interfaceEdges.size(), 3u);  // 1-5, 2-5 listed; 3-5 derived
+  EXPECT_EQ(m.interfaceEdges[0].ref, 11);
+  EXPECT_EQ(m.interfaceEdges[1].ref, 12);
+  EXPECT_EQ(m.interfaceEdges[2].ref, 0);
+  EXPECT_TRUE(m.validate(1.0).ok) << m.validate().firstProblem;
+  // Round trip keeps them.
+  const auto p = tmpPath("itf.mesh");
+  io::writeMesh(p, m);
+  const io::MeshFile r = io::readMeshFile(p);
+  EXPECT_EQ(r.mesh.interfaceEdges.size(), 3u);
+  EXPECT_TRUE(r.warnings.empty());
+  std::filesystem::remove(p);
+}
+
+TEST(Medit, EdgeInNoTriangleIsAnError) {
+  expectInputError([] { io::parseMeshFile(squareWith("Edges\n1\n1 3 1\n", "", "2\n1 2 5 1\n2 3 5 1\n"), "x.mesh"); },
+                   {"x.mesh", "edge (1, 3)", "no triangle"});
+}
+
+TEST(Medit, FeatureSectionsAreReadAndWritten) {
+  const std::string edges = "Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n";
+  const std::string extra = "Corners\n2\n1 3\nRequiredVertices\n1\n5\nRequiredEdges\n1\n2\nRidges\n2\n3 4\n";
+  const io::MeshFile f = io::parseMeshFile(squareWith(edges, extra), "feat.mesh");
+  const Mesh2& m = f.mesh;
+  EXPECT_EQ(m.corners, (std::vector<int>{0, 2}));
+  EXPECT_EQ(m.requiredVertices, (std::vector<int>{4}));
+  ASSERT_EQ(m.requiredEdges.size(), 1u);
+  EXPECT_EQ(m.requiredEdges[0], (std::array<int, 2>{1, 2}));
+  ASSERT_EQ(m.ridges.size(), 2u);
+  EXPECT_EQ(m.ridges[1], (std::array<int, 2>{3, 0}));
+  EXPECT_TRUE(m.validate(1.0).ok) << m.validate().firstProblem;
+  const auto p = tmpPath("feat.mesh");
+  io::writeMesh(p, m);
+  const Mesh2 r = io::readMesh(p);
+  EXPECT_EQ(r.corners, m.corners);
+  EXPECT_EQ(r.requiredVertices, m.requiredVertices);
+  EXPECT_EQ(r.requiredEdges, m.requiredEdges);
+  EXPECT_EQ(r.ridges, m.ridges);
+  std::filesystem::remove(p);
+  expectInputError([&] { io::parseMeshFile(squareWith(edges, "Corners\n1\n9\n"), "c.mesh"); },
+                   {"c.mesh:", "Corners entry 1: index 9 out of range [1, 5]"});
+  expectInputError([&] { io::parseMeshFile(squareWith(edges, "Ridges\n1\n5\n"), "r.mesh"); },
+                   {"r.mesh:", "Ridges names edge 5 but Edges has 4"});
+}
+
+TEST(Medit, ValidateKnowsInterfaceEdges) {
+  Mesh2 m = io::parseMesh(squareWith("Edges\n1\n1 5 3\n"), "v.mesh");
+  ASSERT_TRUE(m.validate().ok) << m.validate().firstProblem;
+  Mesh2 missing = m;
+  missing.interfaceEdges.pop_back();  // a subdomain change not listed
+  EXPECT_NE(missing.validate().firstProblem.find("separates subdomains"), std::string::npos)
+      << missing.validate().firstProblem;
+  Mesh2 onBoundary = m;
+  onBoundary.interfaceEdges.push_back({0, 1, 5});
+  EXPECT_NE(onBoundary.validate().firstProblem.find("lies in one triangle"), std::string::npos)
+      << onBoundary.validate().firstProblem;
+  Mesh2 twice = m;
+  twice.interfaceEdges.push_back({twice.interfaceEdges[0].b, twice.interfaceEdges[0].a, 1});
+  EXPECT_NE(twice.validate().firstProblem.find("listed twice"), std::string::npos) << twice.validate().firstProblem;
+  Mesh2 badCorner = m;
+  badCorner.corners = {7};
+  EXPECT_FALSE(badCorner.validate().ok);
+  Mesh2 badRidge = m;
+  badRidge.ridges = {{0, 2}};  // a diagonal that is no edge
+  EXPECT_NE(badRidge.validate().firstProblem.find("ridge (0, 2) is not an edge"), std::string::npos);
+}
+
+TEST(Medit, SolFieldIsChosenAmongSeveral) {
+  // fields: scalar, vector, tensor, scalar (as the naca example of MMG: types 1 2 ... 3)
+  const std::string sol =
+      "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n2\n4 1 2 3 1\n"
+      "0.5  7 8  4 0 9  0.25\n"
+      "0.5  7 8  1 0 1  0.25\nEnd\n";
+  const auto tensor = io::parseSol(sol, "m.sol");  // the one tensor field by default
+  ASSERT_EQ(tensor.size(), 2u);
+  EXPECT_EQ(tensor[0].m11(), 4);
+  EXPECT_EQ(tensor[0].m22(), 9);
+  const auto size = io::parseSol(sol, "m.sol", 2, 4);
+  EXPECT_DOUBLE_EQ(size[0].m11(), 16);  // h = 0.25
+  const auto first = io::parseSol(sol, "m.sol", 2, 1);
+  EXPECT_DOUBLE_EQ(first[0].m11(), 4);  // h = 0.5
+  expectInputError([&] { io::parseSol(sol, "m.sol", 2, 2); }, {"m.sol:", "field 2 has type 2"});
+  expectInputError([&] { io::parseSol(sol, "m.sol", 2, 5); }, {"m.sol:", "field 5 asked for", "4 solution fields"});
+}
+
+TEST(Medit, BoundaryOnlyFileKeepsItsEdges) {
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+      "Edges\n5\n1 2 1\n2 3 1\n3 4 2\n4 1 2\n2 1 1\nEnd\n";
+  const io::MeshFile f = io::parseMeshFile(text, "b.mesh");
+  EXPECT_EQ(f.mesh.numTriangles(), 0);
+  EXPECT_EQ(f.mesh.boundaryEdges.size(), 4u);
+  ASSERT_EQ(f.warnings.size(), 1u);
+}
