@@ -86,6 +86,10 @@ struct AdaptOptions {
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
   /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
   bool warmStart = false;
+  /// Called at each stage of each cycle (solve, recover, metric, and the mesher's stages and
+  /// placement steps), with Progress::cycle and cycles set (core/progress.hpp); empty: none.
+  /// The results do not depend on it.
+  ProgressCallback progress;
 };
 
 /// Throws InputError naming the field and value.
