@@ -66,8 +66,15 @@ struct TransientOptions {
   fem::TimeScheme scheme = fem::TimeScheme::BDF2;
   TransferOptions transfer;  ///< L2 projection by default
   /// Hessian method, metric norm/p/bounds, gradation and mesher options of the steady loop
-  /// (adaptive_loop.hpp); targetVertices there is ignored (N above is used).
-  AdaptOptions adapt;
+  /// (adaptive_loop.hpp); targetVertices there is ignored (N above is used). The unsteady loop
+  /// keeps the L2 metric (p = 2) without gradation, the settings its defaults were measured
+  /// with; the steady loop's own defaults (p = ∞, hgrad 1.3) are chosen for singular points.
+  AdaptOptions adapt = [] {
+    AdaptOptions a;
+    a.metric.p = 2;
+    a.hgrad = 0;
+    return a;
+  }();
   int errorDegree = 5;  ///< quadrature degree of the errors (1…8)
 };
 

@@ -12,7 +12,8 @@
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
 // per size below N1 (adapt::geometricSchedule); --target-vertices: cycle k targets N_k vertices
 // (the last N repeats when K exceeds the list).
-// --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
+// --p selects the Lp norm the metric is optimal for (default inf, FreeFem/BAMG's L∞ metric: the
+// H1-optimal grading at singular points; 2: L2).
 // --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
 // (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
 // meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
@@ -56,13 +57,6 @@ namespace {
 
 constexpr const char* kCsvHeader =
     "cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh";
-
-bool parseOnOff(const std::string& text, const std::string& where) {
-  if (text == "on" || text == "true" || text == "1") return true;
-  if (text == "off" || text == "false" || text == "0") return false;
-  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
-  return false;
-}
 
 struct Args {
   std::string config;   ///< CONFIG.json (a problem of the user's own), or
