@@ -1,5 +1,6 @@
 // ablmg.hessian_metric and ablmg.quality.
 #include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/mesher/quality.hpp"
 #include "module.hpp"
@@ -96,7 +97,7 @@ void bindAdapt(py::module_& m) {
           py::gil_scoped_release release;
           q = mesher::meshQuality(mesh, metrics, e);
         }
-        return toPython(mesher::toJson(q));
+        return toPython(cli::qualityJson(q));
       },
       kQualityDoc, py::arg("points"), py::arg("triangles"), py::arg("metric") = py::none(), py::kw_only(),
       py::arg("e") = 0.05);
