@@ -101,3 +101,25 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
                    -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_killed.cmake.in)
   set_tests_properties(cli.mesh_killed_run_leaves_outputs_intact PROPERTIES LABELS cli)
 endif()
+# Hostile medit inputs to `ablmg remesh` in the sections read for subdomains and features.
+if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp AND COMMAND ablmg_cli_failure)
+  set(_sq "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n")
+  set(_tri "Triangles\n4\n1 2 5 1\n2 3 5 1\n3 4 5 1\n4 1 5 1\n")
+  set(_edges "Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n")
+  file(WRITE ${_hdir}/req_inside.mesh "${_sq}${_edges}${_tri}RequiredVertices\n1\n5\nEnd\n")
+  ablmg_cli_failure(hostile_required_vertex_inside "req_inside.mesh: required vertex 5 lies inside a subdomain"
+                    remesh -in ${_hdir}/req_inside.mesh -hsiz 0.2 -out ${_hdir}/req_inside.o.mesh)
+  file(WRITE ${_hdir}/dangling.mesh "${_sq}Edges\n5\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n1 5 9\n${_tri}End\n")
+  ablmg_cli_failure(hostile_interface_separates_nothing "dangling.mesh: interface edge \\([0-9], [0-9]\\) has the same subdomain on both sides"
+                    remesh -in ${_hdir}/dangling.mesh -hsiz 0.2 -out ${_hdir}/dangling.o.mesh)
+  file(WRITE ${_hdir}/bad_corner.mesh "${_sq}${_edges}${_tri}Corners\n1\n9\nEnd\n")
+  ablmg_cli_failure(hostile_corner_out_of_range "bad_corner.mesh:[0-9]+: Corners entry 1: index 9 out of range \\[1, 5\\]"
+                    remesh -in ${_hdir}/bad_corner.mesh -hsiz 0.2 -out ${_hdir}/bad_corner.o.mesh)
+  file(WRITE ${_hdir}/bad_ridge.mesh "${_sq}${_edges}${_tri}Ridges\n1\n7\nEnd\n")
+  ablmg_cli_failure(hostile_ridge_out_of_range "bad_ridge.mesh:[0-9]+: Ridges names edge 7 but Edges has 4"
+                    remesh -in ${_hdir}/bad_ridge.mesh -hsiz 0.2 -out ${_hdir}/bad_ridge.o.mesh)
+  file(WRITE ${_hdir}/lonely_edge.mesh "${_sq}Edges\n1\n1 3 1\nTriangles\n2\n1 2 5 1\n2 3 5 1\nEnd\n")
+  ablmg_cli_failure(hostile_edge_in_no_triangle "lonely_edge.mesh: edge \\(1, 3\\) of Edges is a side of no triangle"
+                    remesh -in ${_hdir}/lonely_edge.mesh -hsiz 0.2 -out ${_hdir}/lonely_edge.o.mesh)
+  ablmg_cli_failure(hostile_bad_met_field "-met-field" remesh -in ${_hdir}/req_inside.mesh -met-field 0 -out ${_hdir}/x.o.mesh)
+endif()
