@@ -76,6 +76,35 @@ void requireMeshIndependent(const AdaptProblem& p) {
   for (const auto& [tag, d] : p.pde.neumann) check(d, "the Neumann data of tag " + std::to_string(tag));
   ABLMG_REQUIRE(!p.exact || p.exact->u, "adaptive loop: the exact solution has no u");
 }
+
+/// The interior vertices of `mesh` (the warm-start seeds of the next placement).
+std::vector<Vec2> interiorVertices(const Mesh2& mesh) {
+  std::vector<char> onBoundary(std::size_t(mesh.numVertices()), 0);
+  for (const auto& e : mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
+  std::vector<Vec2> seeds;
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    if (!onBoundary[std::size_t(v)]) seeds.push_back(mesh.vertices[std::size_t(v)]);
+  return seeds;
+}
+
+/// options.mesh for building mesh_k, its progress reports tagged with the cycle and passed on
+/// to options.progress (after options.mesh.progress, if any).
+mesher::MeshOptions cycleMeshOptions(const AdaptOptions& options, int cycle, int cycles) {
+  mesher::MeshOptions m = options.mesh;
+  if (options.progress)
+    m.progress = [&options, cycle, cycles](Progress p) {
+      if (options.mesh.progress) options.mesh.progress(p);
+      p.cycle = cycle;
+      p.cycles = cycles;
+      options.progress(p);
+    };
+  return m;
+}
+
+/// Reports the loop's own stage of cycle k (solve, recover, metric) on mesh_k.
+void reportStage(const AdaptOptions& options, const char* stage, int cycle, int cycles, long vertices) {
+  if (options.progress) options.progress({.stage = stage, .nodes = vertices, .cycle = cycle, .cycles = cycles});
+}
 }  // namespace
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
@@ -93,7 +122,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
 
   AdaptReport report;
   Stopwatch watch;
-  mesher::MeshResult current = uniformMesh(problem.domain, target(0), options.mesh);
+  mesher::MeshResult current = uniformMesh(problem.domain, target(0), cycleMeshOptions(options, 0, cycles));
   double tMesh = watch.seconds();
   for (int k = 0; k < cycles; ++k) {
     CycleReport row;
@@ -107,6 +136,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.qMean = q.mean;
     row.qMin = q.min;
 
+    reportStage(options, "solve", k, cycles, row.vertices);
     watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = watch.seconds();
@@ -124,12 +154,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     report.stoppedEarly = reached && k + 1 < cycles;
     const bool last = k + 1 == cycles || reached;
     // Recovered Hessians: the error estimate of every cycle, and the next metric.
+    reportStage(options, "recover", k, cycles, row.vertices);
     watch.restart();
     const auto hessians =
         recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
     row.tRecover = watch.seconds();
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
+      reportStage(options, "metric", k, cycles, row.vertices);
       AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(k + 1), options);
       next = std::move(a.metric);
       row.tMetric = a.secondsMetric;
@@ -139,13 +171,10 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     if (onCycle) onCycle(CycleData{report.cycles.back(), current.mesh, current.metric, sol.u, err, next});
     if (last) break;
     watch.restart();
-    mesher::MeshOptions meshOptions = options.mesh;
+    mesher::MeshOptions meshOptions = cycleMeshOptions(options, k + 1, cycles);
     if (options.warmStart) {
-      std::vector<char> onBoundary(std::size_t(current.mesh.numVertices()), 0);
-      for (const auto& e : current.mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
-      for (int v = 0; v < current.mesh.numVertices(); ++v)
-        if (!onBoundary[std::size_t(v)])
-          meshOptions.placement.warmStart.push_back(current.mesh.vertices[std::size_t(v)]);
+      const std::vector<Vec2> seeds = interiorVertices(current.mesh);
+      meshOptions.placement.warmStart.insert(meshOptions.placement.warmStart.end(), seeds.begin(), seeds.end());
     }
     current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
     tMesh = watch.seconds();

@@ -51,6 +51,11 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
     ABLMG_REQUIRE(metric[v].isSpd(), name << ": metric[" << v << "] (" << metric[v].m11() << ", " << metric[v].m12()
                                           << ", " << metric[v].m22() << ") is not positive definite");
   RemeshResult r;
+  const long inputVertices = long(metric.size());
+  const auto report = [&](const char* stage) {
+    if (options.mesh.progress) options.mesh.progress({.stage = stage, .nodes = inputVertices});
+  };
+  report("validation");
   Stopwatch watch;
   if (options.inputCheck == BackgroundMetricField::MeshCheck::Validate) {
     const MeshValidation v = mesh.validate();
@@ -62,6 +67,7 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   r.clampedMetrics = clampSizes(metric, options.hmin, options.hmax);
   r.secondsClamp = watch.seconds();
   // 2. Gradation: sizes grow by at most ≈ hgrad per unit metric length along the input edges.
+  report("gradation");
   watch.restart();
   if (options.hgrad > 1) r.gradation = limitGradation(mesh, metric, {.hgrad = options.hgrad});
   r.secondsGradation = watch.seconds();
@@ -71,6 +77,7 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   r.secondsDomain = watch.seconds();
   // 4. The input mesh and metric as the background field (validated above or by the caller;
   // the clamp, gradation and domain do not change the mesh).
+  report("background");
   watch.restart();
   mesher::MeshOptions meshOptions = options.mesh;
   if (options.warmStart == RemeshOptions::WarmStart::IfFits && meshOptions.placement.warmStart.empty())

@@ -1,20 +1,18 @@
 #include "ablmg/adapt/transfer.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/core/point_locator.hpp"
 #include "ablmg/core/predicates.hpp"
 #include "ablmg/fem/p1_matrices.hpp"
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace ablmg::adapt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 /// A convex polygon of at most 9 vertices (a triangle clipped by three half-planes has ≤ 6).
 /// label[i] names the line the edge p[i] → p[i+1] lies on: −1 for the subject triangle's own
@@ -291,9 +289,29 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
   return rhs;
 }
 
+/// Σ_i f(i) over [0, n), in blocks of a fixed size summed in block order: the same bits for
+/// any thread count (an OpenMP reduction would not be).
+template <class F>
+double blockSum(Eigen::Index n, F&& f) {
+  constexpr Eigen::Index kBlock = 4096;
+  const Eigen::Index blocks = (n + kBlock - 1) / kBlock;
+  thread_local std::vector<double> partial;
+  partial.assign(std::size_t(blocks), 0.0);
+  double* out = partial.data();
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index k = 0; k < blocks; ++k) {
+    double s = 0;
+    for (Eigen::Index i = k * kBlock; i < std::min(n, (k + 1) * kBlock); ++i) s += f(i);
+    out[k] = s;
+  }
+  double s = 0;
+  for (Eigen::Index k = 0; k < blocks; ++k) s += partial[std::size_t(k)];
+  return s;
+}
+
 /// Jacobi-preconditioned CG on the mass matrix (see the header), from x (initial guess).
-/// Plain loops over the compressed columns (M is symmetric, so a column is a row): one pass
-/// per iteration computes q = M p and pᵀq.
+/// Plain loops over the compressed columns (M is symmetric, so a column is a row), in parallel
+/// with block-ordered sums (deterministic).
 int massSolve(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& diag, const Eigen::VectorXd& b,
               Eigen::VectorXd& x) {
   const double bn = b.norm();
@@ -305,17 +323,15 @@ int massSolve(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& diag,
   const int* outer = M.outerIndexPtr();
   const int* inner = M.innerIndexPtr();
   const double* val = M.valuePtr();
-  const auto apply = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {
-    double dot = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
+  Eigen::VectorXd r(n), z(n), p(n), q(n);
+  const auto apply = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) {  // out = M v; returns vᵀ M v
+    return blockSum(n, [&](Eigen::Index i) {
       double s = 0;
       for (int k = outer[i]; k < outer[i + 1]; ++k) s += val[k] * v[inner[k]];
       out[i] = s;
-      dot += s * v[i];
-    }
-    return dot;
+      return s * v[i];
+    });
   };
-  Eigen::VectorXd r(n), z(n), p(n), q(n);
   apply(x, q);
   r = b - q;
   z = r.cwiseQuotient(diag);
@@ -325,16 +341,16 @@ int massSolve(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& diag,
   int it = 0;
   for (; it < 300 && rr > tol2; ++it) {
     const double alpha = rz / apply(p, q);
-    double rzNew = 0;
     rr = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
+    const double rzNew = blockSum(n, [&](Eigen::Index i) {
       x[i] += alpha * p[i];
       r[i] -= alpha * q[i];
       z[i] = r[i] / diag[i];
-      rzNew += r[i] * z[i];
-      rr += r[i] * r[i];
-    }
+      return r[i] * z[i];
+    });
+    rr = blockSum(n, [&](Eigen::Index i) { return r[i] * r[i]; });
     const double beta = rzNew / rz;
+#pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) p[i] = z[i] + beta * p[i];
     rz = rzNew;
   }
@@ -416,7 +432,7 @@ double integrate(const Mesh2& mesh, const Eigen::VectorXd& u) {
 std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& newMesh,
                                             std::span<const Eigen::VectorXd> fields, const TransferOptions& options,
                                             TransferStats* statsOut) {
-  const auto t0 = Clock::now();
+  const Stopwatch watch;
   requireFields(oldMesh, fields);
   ABLMG_REQUIRE(oldMesh.numTriangles() > 0 && newMesh.numTriangles() > 0, "transfer: a mesh has no triangle");
   TransferStats stats;
@@ -428,7 +444,7 @@ std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& n
     stats.absMassOld.push_back(integrate(oldMesh, fields[f].cwiseAbs()));
     stats.massNew.push_back(integrate(newMesh, out[f]));
   }
-  stats.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  stats.seconds = watch.seconds();
   if (statsOut) *statsOut = std::move(stats);
   return out;
 }

@@ -12,7 +12,8 @@
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
 // per size below N1 (adapt::geometricSchedule); --target-vertices: cycle k targets N_k vertices
 // (the last N repeats when K exceeds the list).
-// --p selects the Lp norm the metric is optimal for (2: L2; inf weights the H1 error more).
+// --p selects the Lp norm the metric is optimal for (default inf, FreeFem/BAMG's L∞ metric: the
+// H1-optimal grading at singular points; 2: L2).
 // --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
 // (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
 // meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
@@ -29,6 +30,7 @@
 #include "ablmg/adapt/convergence.hpp"
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
+#include "ablmg/cli/progress_line.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/problem_config.hpp"
@@ -56,13 +58,6 @@ namespace {
 constexpr const char* kCsvHeader =
     "cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh";
 
-bool parseOnOff(const std::string& text, const std::string& where) {
-  if (text == "on" || text == "true" || text == "1") return true;
-  if (text == "off" || text == "false" || text == "0") return false;
-  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
-  return false;
-}
-
 struct Args {
   std::string config;   ///< CONFIG.json (a problem of the user's own), or
   std::string problem;  ///< --problem NAME
@@ -72,6 +67,7 @@ struct Args {
   adapt::ScheduleOptions schedule;
   std::string outDir = "adapt_out";
   bool uniform = true, vtu = true, medit = false;
+  int verbosity = 1;  ///< -v N: 0 = no progress line
 };
 
 Args parseArgs(const std::vector<std::string>& args) {
@@ -152,6 +148,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.mesh.placement.lattice.orientation = mesher::parseLatticeOrientation(value());
     } else if (key == "--medit") {
       a.medit = parseOnOff(value(), "adapt: --medit");
+    } else if (key == "-v") {
+      a.verbosity = int(parseInteger(value(), "adapt: -v", 0, 10));
     } else if (key == "--out-dir") {
       a.outDir = value();
     } else if (!key.empty() && key[0] != '-') {
@@ -256,7 +254,7 @@ const char* kAdaptHelp =
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
-                   [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+                   [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
 fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.json's own:
@@ -275,6 +273,7 @@ Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessia
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
 length gains less than G in 10 steps (default 0.01, as ablmg remesh; 0 = run to the residual
 or stall rule: ~1/3 more remesh time, errors a few % lower; adapt/adaptive_loop.hpp).
+-v N: 0 = no progress line on stderr (shown on a terminal only; default 1).
 )";
 
 int runAdapt(const std::vector<std::string>& argv) {
@@ -306,8 +305,11 @@ int runAdapt(const std::vector<std::string>& argv) {
 
   // 2. The loop; each cycle prints its line and writes its .vtu.
   Mesh2 finalMesh;
+  ProgressLine progress("adapt", a.verbosity);
+  a.options.progress = progress.callback();
   const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem.data, a.options, [&](const adapt::CycleData& c) {
     const auto& r = c.report;
+    progress.clear();
     std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
     if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
     std::printf(" est=%.3e", r.l2InterpEstimate);
@@ -342,6 +344,7 @@ int runAdapt(const std::vector<std::string>& argv) {
     }
     if (c.nextMetric.empty()) finalMesh = c.mesh;
   });
+  progress.clear();
 
   // 3. Rates and the error check.
   if (exact) {

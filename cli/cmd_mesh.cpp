@@ -6,6 +6,7 @@
 // exits 1; outputs are written only after the mesh exists, so a failed run writes nothing.
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
+#include "ablmg/cli/progress_line.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/mesh_output.hpp"
 #include "ablmg/cli/stats_json.hpp"
@@ -24,7 +25,7 @@ namespace ablmg::cli {
 namespace {
 
 const char* kHelp =
-    R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N]
+    R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N] [-v N]
 
 Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/config.md).
   -o PATH          output, format by extension (repeatable; adds to the config's "outputs"):
@@ -34,6 +35,7 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
   --seed N         overrides options.placement.seed
   --max-nodes N    refuse (before allocating) a metric asking for more than N nodes
                    (options.placement.maxNodes; default 50 000 000)
+  -v N             0: no progress line on stderr (shown on a terminal only; default 1)
   -h, --help       this text
 )";
 
@@ -66,6 +68,7 @@ int runMesh(const std::vector<std::string>& args) {
   std::vector<std::string> outputs;
   bool bubblesOnly = false;
   long long seed = -1, maxNodes = -1;
+  int verbosity = 1;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -84,6 +87,8 @@ int runMesh(const std::vector<std::string>& args) {
       bubblesOnly = true;
     } else if (a == "--seed") {
       seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
+    } else if (a == "-v") {
+      verbosity = int(parseInteger(value(), "mesh: -v", 0, 10));
     } else if (a == "--max-nodes") {
       maxNodes = parseInteger(value(), "mesh: --max-nodes", 1, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] == '-') {
@@ -117,6 +122,8 @@ int runMesh(const std::vector<std::string>& args) {
 
   // 3. Mesh (or place the bubbles).
   noteCrowdedCorners(cfg.domain, *cfg.metric);
+  ProgressLine progress("mesh", verbosity);
+  cfg.options.progress = progress.callback();
   const Stopwatch watch;
   Mesh2 mesh;
   std::vector<Metric2> metric;
@@ -133,6 +140,7 @@ int runMesh(const std::vector<std::string>& args) {
     stats = meshStatsJson(r.stats);
   }
   const double seconds = watch.seconds();
+  progress.clear();
 
   // 4. Outputs (atomic each); on failure remove the ones this run already wrote.
   std::vector<std::string> written;

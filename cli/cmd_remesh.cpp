@@ -10,6 +10,7 @@
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
+#include "ablmg/cli/progress_line.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
@@ -50,7 +51,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   mesher/place_nodes.hpp): graded metrics rarely let the bubble residual settle.
   -v N             verbosity, an integer in [-1, 10]: -1 silent, 0 summary only, >= 1 options + summary (default 1),
                    >= 2 also the time of every phase (read, gradation, domain, background
-                   field, placement, connection, quality post-pass, validation, write)
+                   field, placement, connection, quality post-pass, validation, write);
+                   a progress line on stderr if it is a terminal, unless -v is 0 or -1
   --seed N         placement seed (default 1)
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
@@ -187,6 +189,9 @@ int runRemesh(const std::vector<std::string>& args) {
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
 
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
+  ProgressLine progress("remesh", verbose == -1 ? 0 : verbose);
+  options.mesh.progress = progress.callback();
+  progress.update({.stage = "read"});
   Stopwatch watch;
   auto inputs = readInputs(in, sol, metField, verbose);
   const double secondsRead = watch.seconds();
@@ -195,8 +200,10 @@ int runRemesh(const std::vector<std::string>& args) {
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
+  progress.update({.stage = "write", .nodes = r.mesh.numVertices()});
   watch.restart();
   io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
+  progress.clear();
   const double secondsWrite = watch.seconds();
   if (!reportPath.empty()) {
     try {

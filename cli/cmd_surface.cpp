@@ -20,6 +20,7 @@
 // files are written only once the mesh exists, each atomically.
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
+#include "ablmg/cli/progress_line.hpp"
 #include "ablmg/cli/config.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
@@ -65,6 +66,7 @@ meshed with M2 = J^T M3 J (eq. 16) for the isotropic 3D size H (eq. 17), then ma
   --png-3d PNG     a shaded view of the 3D mesh (orthographic, Lambert shading)
   --json R.json    report: options, counts, quality distribution, edge lengths, manifold check, times
   --seed N         placement seed (default 1)
+  -v N             0: no progress line on stderr (shown on a terminal only; default 1)
 )";
 
 /// The extension must match and the folder must exist — checked before the (long) meshing.
@@ -159,6 +161,7 @@ int runSurface(const std::vector<std::string>& args) {
   std::string name, configPath, meshPath, vtuPath, stlPath, pngPath, png3dPath, jsonPath;
   double h = 0;
   long long seed = -1;
+  int verbosity = 1;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -187,6 +190,8 @@ int runSurface(const std::vector<std::string>& args) {
       png3dPath = value();
     } else if (a == "--json") {
       jsonPath = value();
+    } else if (a == "-v") {
+      verbosity = int(parseInteger(value(), "surface: -v", 0, 10));
     } else if (a == "--seed") {
       seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] != '-' && configPath.empty()) {
@@ -228,8 +233,11 @@ int runSurface(const std::vector<std::string>& args) {
   std::cout << "ablmg surface: options " << optionsEcho.dump() << "\n";
 
   // Mesh (u,v) with M2, map to 3D, measure.
+  ProgressLine progress("surface", verbosity);
+  setup.options.progress = progress.callback();
   const Stopwatch watch;
   const mesher::MeshResult r = mesher::meshDomain(setup.surface->parameterDomain(), m2, setup.options);
+  progress.clear();
   const mesher::SurfaceMesh s = mesher::mapToSurface(r.mesh, *setup.surface);
   const double seconds = watch.seconds();
   const mesher::MeshQuality q = mesher::surfaceQuality(s, m3);

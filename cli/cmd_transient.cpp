@@ -11,6 +11,7 @@
 //   frames/*.png                 the mesh of each interval coloured by u_h (--frames on)
 #include "ablmg/adapt/transient_loop.hpp"
 #include "ablmg/cli/command.hpp"
+#include "ablmg/cli/parse_number.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/io/picture.hpp"
@@ -32,30 +33,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double parseNumber(const std::string& text, const std::string& where) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) { used = 0; }
-  ABLMG_REQUIRE(used == text.size() && !text.empty(), where << ": expected a number, got '" << text << "'");
-  return v;
-}
-
-int parseInteger(const std::string& text, const std::string& where, int lo, int hi) {
-  const double v = parseNumber(text, where);
-  ABLMG_REQUIRE(v == std::floor(v) && v >= lo && v <= hi,
-                where << " must be an integer in " << lo << ".." << hi << ", got " << text);
-  return int(v);
-}
-
-bool parseOnOff(const std::string& text, const std::string& where) {
-  if (text == "on" || text == "true" || text == "1") return true;
-  if (text == "off" || text == "false" || text == "0") return false;
-  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
-  return false;
-}
-
 struct Args {
   std::string problem;
   std::map<std::string, double> params;
@@ -73,8 +50,8 @@ constexpr const char* kUsage =
     "                       [--hgrad B] [--p P] [--hessian lsq|double] [--seed S] [--frames on|off]\n"
     "                       [--label NAME] [--plot-with LABEL=DIR ...] [--out-dir DIR]\n"
     "  The heat equation u_t - kappa Laplace(u) = f on a mesh that follows the solution: every K steps\n"
-    "  (default 5) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
-    "  sub-steps, F fixed-point passes, default 2), a remesh to N vertices (default 4000), the state\n"
+    "  (default 10) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
+    "  sub-steps, F fixed-point passes, default 1), a remesh to N vertices (default 4000), the state\n"
     "  transferred (conservative L2 projection), and on. --uniform: one uniform mesh of N vertices.\n"
     "  --metric current: the metric of the current solution only. Problems: movingpeak, front\n"
     "  (their default dt and final time: 0.002, 0.5 / 0.6). Outputs: see cli/cmd_transient.cpp.\n";
@@ -94,11 +71,11 @@ void parseOption(Args& a, const std::string& key, const std::function<const std:
   } else if (key == "--t-end") {
     o.tEnd = parseNumber(value(), "transient: --t-end");
   } else if (key == "--remesh-every") {
-    o.remeshEvery = parseInteger(value(), "transient: --remesh-every", 1, 1000000);
+    o.remeshEvery = int(parseInteger(value(), "transient: --remesh-every", 1, 1000000));
   } else if (key == "--vertices") {
     o.vertices = parseNumber(value(), "transient: --vertices");
   } else if (key == "--fixed-point-iterations") {
-    o.fixedPointIterations = parseInteger(value(), "transient: --fixed-point-iterations", 1, 20);
+    o.fixedPointIterations = int(parseInteger(value(), "transient: --fixed-point-iterations", 1, 20));
   } else if (key == "--metric") {
     o.metric = adapt::parseTransientMetric(value());
   } else if (key == "--uniform") {

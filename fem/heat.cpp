@@ -1,12 +1,12 @@
 #include "ablmg/fem/heat.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/fem/p1_matrices.hpp"
 #include "ablmg/fem/quadrature.hpp"
 
 #include <Eigen/CholmodSupport>
 
-#include <chrono>
 #include <cmath>
 
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -62,7 +62,7 @@ void HeatSolver::setState(double t, Eigen::VectorXd u, std::optional<Eigen::Vect
 }
 
 void HeatSolver::factorise(double c) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch watch;
   const Eigen::SparseMatrix<double> A = c * M_ + K_;
   const int nf = int(vertexOfDof_.size());
   std::vector<Eigen::Triplet<double>> ff, fd;
@@ -90,7 +90,7 @@ void HeatSolver::factorise(double c) {
   factor_ = std::move(f);
   factorC_ = c;
   ++factorizations_;
-  factorSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  factorSeconds_ += watch.seconds();
 }
 
 namespace {

@@ -6,22 +6,47 @@
 #include <cmath>
 
 namespace ablmg::fem {
+namespace {
+
+/// The sorted vertex neighbours of v (itself included) into row (insertion sort: a row has
+/// about 7 entries).
+void sortedRow(const Mesh2& mesh, const Mesh2::VertexTriangles& vt, int v, std::vector<int>& row) {
+  row.clear();
+  for (int k = vt.offsets[v]; k < vt.offsets[v + 1]; ++k)
+    for (int w : mesh.triangles[std::size_t(vt.ids[k])]) {
+      std::size_t i = row.size();
+      while (i > 0 && row[i - 1] > w) --i;
+      if (i > 0 && row[i - 1] == w) continue;
+      row.insert(row.begin() + std::ptrdiff_t(i), w);
+    }
+}
+
+}  // namespace
 
 P1Pattern p1Pattern(const Mesh2& mesh) {
   const int nv = mesh.numVertices();
   const Mesh2::VertexTriangles vt = mesh.vertexTriangles();
   P1Pattern p;
-  std::vector<int> outer(std::size_t(nv) + 1, 0), inner;
-  inner.reserve(std::size_t(7) * nv);
-  std::vector<int> row;
-  for (int v = 0; v < nv; ++v) {
-    row.clear();
-    for (int k = vt.offsets[v]; k < vt.offsets[v + 1]; ++k)
-      for (int w : mesh.triangles[std::size_t(vt.ids[k])]) row.push_back(w);
-    std::sort(row.begin(), row.end());
-    row.erase(std::unique(row.begin(), row.end()), row.end());
-    inner.insert(inner.end(), row.begin(), row.end());
-    outer[std::size_t(v) + 1] = int(inner.size());
+  std::vector<int> outer(std::size_t(nv) + 1, 0);
+#pragma omp parallel
+  {
+    std::vector<int> row;
+#pragma omp for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      sortedRow(mesh, vt, v, row);
+      outer[std::size_t(v) + 1] = int(row.size());
+    }
+  }
+  for (int v = 0; v < nv; ++v) outer[std::size_t(v) + 1] += outer[std::size_t(v)];
+  std::vector<int> inner(std::size_t(outer.back()));
+#pragma omp parallel
+  {
+    std::vector<int> row;
+#pragma omp for schedule(static)
+    for (int v = 0; v < nv; ++v) {
+      sortedRow(mesh, vt, v, row);
+      std::copy(row.begin(), row.end(), inner.begin() + outer[std::size_t(v)]);
+    }
   }
   // The pattern is symmetric, so the rows built above are also the columns (CSC).
   p.matrix = Eigen::SparseMatrix<double>(nv, nv);
@@ -30,6 +55,7 @@ P1Pattern p1Pattern(const Mesh2& mesh) {
   std::copy(inner.begin(), inner.end(), p.matrix.innerIndexPtr());
   std::fill(p.matrix.valuePtr(), p.matrix.valuePtr() + inner.size(), 0.0);
   p.slots.resize(mesh.triangles.size());
+#pragma omp parallel for schedule(static)
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tr = mesh.triangles[t];
     for (int a = 0; a < 3; ++a)

@@ -183,7 +183,7 @@ std::map<std::string, double> defaultsOf(const std::string& name) {
   if (name == "peak") return {{"alpha", 1000.0}, {"xc", 0.5}, {"yc", 0.5}};
   if (name == "tanhlayer") return {{"epsilon", 0.01}};
   if (name == "reentrant") return {{"omega", 1.75 * pi}};
-  if (name == "linesing") return {{"alpha", 1.5}, {"beta", 0.6}};
+  if (name == "linesing") return {{"alpha", 2.5}, {"beta", 0.6}};
   if (name == "multiple")
     return {{"alpha_p", 1000.0}, {"xp", -std::sqrt(5.0) / 4},
             {"yp", -0.25},       {"alpha_w", 200.0},

@@ -20,7 +20,12 @@ double expectedArea(const Domain& domain, const Mesh2& mesh) {
 }  // namespace
 
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
+  const auto report = [&](const char* stage, long nodes) {
+    if (options.progress) options.progress({.stage = stage, .nodes = nodes});
+  };
+  report("placement", -1);
   PlacementResult placement = placeNodes(domain, metric, options.placement);
+  report("connection", long(placement.nodes.positions.size()));
   ConnectResult connected = connect(placement, domain, options.connect);
 
   MeshResult result;
@@ -30,6 +35,7 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
   // The quality post-pass (improve.hpp): moved vertices get the field's metric in result.metric;
   // a collapse removes a vertex from both the mesh and result.metric (they stay in step).
+  if (options.improve.enabled) report("improve", connected.mesh.numVertices());
   if (options.improve.enabled)
     result.stats.improve = improveQuality(connected.mesh, result.metric, metric, options.improve);
   const ImproveStats& is = result.stats.improve;
@@ -37,6 +43,7 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   // Every mesh returned is valid: checked here unless connect() already checked this very mesh
   // and the post-pass left it as it was.
   const Stopwatch watch;
+  if (!connected.validated || improved) report("validation", connected.mesh.numVertices());
   if (!connected.validated || improved)
     connected.mesh.requireValid("meshDomain", expectedArea(domain, connected.mesh), 1e-9);
   result.stats.secondsValidate = connected.secondsValidate + watch.seconds();

@@ -11,6 +11,7 @@
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/progress.hpp"
 #include "ablmg/mesher/connect.hpp"
 #include "ablmg/mesher/improve.hpp"
 #include "ablmg/mesher/place_nodes.hpp"
@@ -21,6 +22,10 @@ struct MeshOptions {
   PlacementOptions placement;
   ConnectOptions connect;
   ImproveOptions improve;  ///< the post-pass on triangles with q < improve.qThreshold (enabled: on)
+  /// Called at each stage and every progressEvery placement steps (core/progress.hpp); empty:
+  /// no reports. The mesh does not depend on it.
+  ProgressCallback progress;
+  int progressEvery = 10;  ///< placement steps between two reports (values < 1 count as 1)
 };
 
 struct MeshStats {

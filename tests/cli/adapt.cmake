@@ -89,10 +89,31 @@ if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "figures")
   file(READ "${OUTDIR}/convergence.json" _j)
   string(JSON _n LENGTH "${_j}" cycles)
   math(EXPR _last "${_n} - 1")
+  if(NOT DEFINED MIN_Q_MEAN)
+    set(MIN_Q_MEAN 0.9)
+  endif()
+  if(NOT DEFINED FALL_FROM)
+    set(FALL_FROM 1000000)  # no check
+  endif()
   foreach(_i RANGE ${_last})
     string(JSON _q GET "${_j}" cycles ${_i} q_mean)
-    if(_q LESS 0.9)
-      message(FATAL_ERROR "cycle ${_i}: q mean ${_q} < 0.9")
+    if(_q LESS ${MIN_Q_MEAN})
+      message(FATAL_ERROR "cycle ${_i}: q mean ${_q} < ${MIN_Q_MEAN}")
+    endif()
+    # Whenever the target size grows, both errors fall (FALL_FROM: from that cycle on).
+    if(_i GREATER 0 AND _i GREATER_EQUAL ${FALL_FROM})
+      math(EXPR _p "${_i} - 1")
+      string(JSON _n1 GET "${_j}" cycles ${_i} target_vertices)
+      string(JSON _n0 GET "${_j}" cycles ${_p} target_vertices)
+      if(_n1 GREATER _n0)
+        foreach(_e l2_error h1_error)
+          string(JSON _e1 GET "${_j}" cycles ${_i} ${_e})
+          string(JSON _e0 GET "${_j}" cycles ${_p} ${_e})
+          if(NOT _e1 LESS _e0)
+            message(FATAL_ERROR "cycle ${_i}: N ${_n0} -> ${_n1} but ${_e} ${_e0} -> ${_e1}")
+          endif()
+        endforeach()
+      endif()
     endif()
   endforeach()
   string(JSON _h1 GET "${_j}" rates h1)
@@ -216,3 +237,26 @@ add_test(NAME cli_adapt_lshape_figures
                  -DMAX_H1_RATE=-0.45 -DMAX_L2_RATE=-0.9 -DOUTDIR=${_dir}/lshape
                  -P ${CMAKE_CURRENT_LIST_FILE})
 set_tests_properties(cli_adapt_layer_figures cli_adapt_lshape_figures PROPERTIES LABELS cli)
+
+# A small loop per library problem with the default schedule (--vertices N): every cycle's mesh
+# valid with q mean >= 0.95, both errors falling whenever the size grows, and the rates over the
+# last sizes at least the optimal ones (L2 -1, H1 -1/2, with the acceptance margins -0.9, -0.45).
+foreach(case
+    "wavefront|--problem wavefront"
+    "wavefront_steep|--problem wavefront --param alpha=1000"
+    "peak|--problem peak"
+    "lshape|--problem lshape"
+    "tanhlayer|--problem tanhlayer"
+    "reentrant_5pi4|--problem reentrant --param omega=3.9269908169872414"
+    "reentrant_7pi4|--problem reentrant"
+    "linesing|--problem linesing"
+    "multiple|--problem multiple")
+  string(REPLACE "|" ";" _parts "${case}")
+  list(GET _parts 0 _name)
+  list(GET _parts 1 _args)
+  add_test(NAME cli_adapt_schedule_${_name}
+           COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=figures "-DARGS=${_args} --vertices 2000 --uniform off"
+                   -DMAX_H1_RATE=-0.45 -DMAX_L2_RATE=-0.9 -DMIN_Q_MEAN=0.95 -DFALL_FROM=1
+                   -DOUTDIR=${_dir}/schedule_${_name} -P ${CMAKE_CURRENT_LIST_FILE})
+  set_tests_properties(cli_adapt_schedule_${_name} PROPERTIES LABELS cli)
+endforeach()

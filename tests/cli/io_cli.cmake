@@ -1,8 +1,9 @@
-# io/config tests: cli/config.cpp, cli/mesh_output.cpp, cli/problem_config.cpp and cli/parse_number.cpp are not in a
-# library, so test_io compiles them in.
+# io/config tests: cli/config.cpp, cli/mesh_output.cpp, cli/problem_config.cpp, cli/parse_number.cpp
+# and cli/progress_line.cpp are not in a library, so test_io compiles them in.
 if(TARGET test_io)
   target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp
-                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp ${PROJECT_SOURCE_DIR}/cli/parse_number.cpp)
+                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp ${PROJECT_SOURCE_DIR}/cli/parse_number.cpp
+                                 ${PROJECT_SOURCE_DIR}/cli/progress_line.cpp)
 endif()
 
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line

@@ -80,8 +80,8 @@ set(_dir ${CMAKE_CURRENT_BINARY_DIR}/cli_transient)
 file(MAKE_DIRECTORY ${_dir})
 foreach(
   case
-  "k_zero|--problem movingpeak --remesh-every 0|--remesh-every must be an integer in 1..1000000, got 0"
-  "k_fraction|--problem movingpeak --remesh-every 2.5|--remesh-every must be an integer"
+  "k_zero|--problem movingpeak --remesh-every 0|--remesh-every: expected an integer in \\[1, 1000000\\], got '0'"
+  "k_fraction|--problem movingpeak --remesh-every 2.5|--remesh-every: expected an integer"
   "dt_zero|--problem movingpeak --dt 0|--dt must be > 0, got 0"
   "dt_negative|--problem movingpeak --dt -0.01|--dt must be > 0, got -0.01"
   "t_end_before_start|--problem movingpeak --t-end -0.5|the final time -0.5 must be after the start time 0"
@@ -90,12 +90,13 @@ foreach(
   "unknown_problem|--problem wave|unknown transient problem 'wave' \\(valid: movingpeak, front\\)"
   "unknown_param|--problem movingpeak --param beta=2|unknown parameter 'beta'"
   "bad_vertices|--problem movingpeak --vertices 3|vertices must be >= 10 \\(got 3\\)"
-  "bad_fixed_point|--problem movingpeak --fixed-point-iterations 0|--fixed-point-iterations must be an integer in 1..20"
+  "bad_fixed_point|--problem movingpeak --fixed-point-iterations 0|--fixed-point-iterations: expected an integer in \\[1, 20\\]"
   "bad_metric|--problem movingpeak --metric future|unknown transient metric 'future'"
   "bad_scheme|--problem movingpeak --scheme rk4|unknown time scheme 'rk4'"
   "bad_transfer|--problem movingpeak --transfer nearest|unknown transfer method 'nearest'"
   "missing_value|--problem movingpeak --dt|--dt needs a value"
   "bad_number|--problem movingpeak --dt abc|--dt: expected a number, got 'abc'"
+  "nan_t_end|--problem movingpeak --t-end nan|--t-end: expected a number, got 'nan'"
   "unknown_flag|--problem movingpeak --frobnicate 1|unknown argument '--frobnicate'"
   "plot_with_missing|--problem movingpeak --plot-with uniform=/nonexistent/dir|--plot-with uniform: cannot read /nonexistent/dir/steps.csv")
   string(REPLACE "|" ";" _parts "${case}")
