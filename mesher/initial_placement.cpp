@@ -71,6 +71,7 @@ DomainGeometry::DomainGeometry(const Domain& domain) {
     const int n = int(p.points.size());
     p.tags = dl[l].tags.empty() ? std::vector<int>(n, 1) : dl[l].tags;
     p.corners = domain.corners(l);
+    p.kept = dl[l].keptSegments;
     p.cum.assign(n + 1, 0.0);
     for (int k = 0; k < n; ++k) {
       p.cum[k + 1] = p.cum[k] + (p.points[(k + 1) % n] - p.points[k]).norm();
@@ -267,7 +268,9 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
       const double s1 = c + 1 < nc ? poly.cum[poly.corners[c + 1]] : poly.cum[poly.corners[0]] + poly.length;
       const double m0 = metricAt(s0);
       const double m1 = s1 <= poly.length ? metricAt(s1) : metricAt(s1 - poly.length) + LM;
-      const int pieces = std::max(1, int(std::lround(m1 - m0)));
+      const bool kept = !poly.kept.empty() && poly.kept[std::size_t(poly.corners[c])] &&
+                        poly.corners[(c + 1) % nc] == (poly.corners[c] + 1) % n;  // one kept segment
+      const int pieces = kept ? 1 : std::max(1, int(std::lround(m1 - m0)));
       push(NodeKind::Vertex, s0);
       for (int i = 1; i < pieces; ++i) push(NodeKind::Segment, euclidAt(m0 + (m1 - m0) * i / pieces));
     }
