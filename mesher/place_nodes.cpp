@@ -121,7 +121,8 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDis
 
 }  // namespace
 
-PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options,
+                           const ProgressCallback& progress, int progressEvery) {
   ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
                 "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got "
                     << options.timeStep << ", " << options.mass << ", " << options.damping);
@@ -261,6 +262,8 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       residual = sys.computeForces(adj, p);
       st.secondsDynamics += since(t);
     }
+    if (progress && step % std::max(1, progressEvery) == 0)
+      progress({.stage = "placement", .step = step, .residual = residual, .target = target, .nodes = long(sys.size())});
     if (residual < target && populationSettled) {
       // The active-set residual skips sleepers (each ≤ sleepBelow when it fell asleep, but
       // small neighbour moves may have loaded it since): stop only when every bubble agrees.
