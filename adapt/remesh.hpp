@@ -120,6 +120,11 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 /// refs kept), and the corners and required vertices/edges (all on boundaries or interfaces)
 /// at their exact coordinates, renumbered. A subdomain's area is kept to round-off where its
 /// boundary is straight between junctions and corners.
+/// Slits: a mesh whose boundary has distinct vertices at the same point (a zero-width gap, the
+/// two lips of a crack) is cut, for meshing only, from each tip (the boundary vertex between
+/// two lips) along the shortest path of mesh edges to the boundary or an interface; the lips
+/// then lie in different pieces and keep distinct vertices, the tip stays a vertex, and the
+/// cut is glued and dropped (no interface edge remains on it).
 bool needsSubdomains(const Mesh2& mesh);
 /// The subdomain path of remesh(): `mesh` valid, `field` its background field; fills out.mesh,
 /// out.metric, out.stats (counts summed over the subdomains). Throws InputError naming `name`

@@ -10,7 +10,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 namespace ablmg::adapt {
@@ -18,6 +20,86 @@ namespace {
 
 std::uint64_t directed(int a, int b) { return std::uint64_t(std::uint32_t(a)) << 32 | std::uint32_t(b); }
 std::uint64_t undirected(int a, int b) { return directed(std::min(a, b), std::max(a, b)); }
+
+/// Bits of a point, for gluing the subdomain meshes at their shared (bit-identical) points.
+using PointKey = std::pair<std::uint64_t, std::uint64_t>;
+PointKey keyOf(const Vec2& p) { return {std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y())}; }
+
+/// The ref of the cuts that split a slit's subdomain (never a file's ref: dropped after gluing).
+constexpr int kCutRef = std::numeric_limits<int>::min() + 1;
+
+/// Slits, given in a mesh as a zero-width gap: boundary vertices at the same point as another
+/// boundary vertex are lip vertices. Returns the flags (per vertex) of the lip vertices.
+std::vector<char> lipVertices(const Mesh2& mesh) {
+  std::map<PointKey, int> seen;
+  std::vector<char> lip(mesh.vertices.size(), 0);
+  for (const auto& e : mesh.boundaryEdges)
+    for (int v : {e.a, e.b}) {
+      const auto [it, added] = seen.emplace(keyOf(mesh.vertices[std::size_t(v)]), v);
+      if (!added && it->second != v) lip[std::size_t(v)] = lip[std::size_t(it->second)] = 1;
+    }
+  return lip;
+}
+
+/// A slit is made meshable by cutting its subdomain in two: from each tip (a boundary vertex
+/// between two lip vertices, itself on no lip), the shortest path of mesh edges (Euclidean
+/// length; ties to the smaller vertex) through vertices on no boundary, interface or earlier cut,
+/// to a boundary or interface vertex on no lip. Its edges are added as interface edges of ref
+/// kCutRef: the two lips then lie in two subdomains and keep distinct vertices. Returns the
+/// number of tips; throws InputError if a tip has no path.
+int cutSlits(Mesh2& mesh, const std::string& name) {
+  const std::vector<char> lip = lipVertices(mesh);
+  if (std::find(lip.begin(), lip.end(), 1) == lip.end()) return 0;
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::vector<int>> nbrs(nv);
+  for (const auto& e : mesh.edges()) {
+    nbrs[std::size_t(e[0])].push_back(e[1]);
+    nbrs[std::size_t(e[1])].push_back(e[0]);
+  }
+  std::vector<char> blocked(nv, 0);  // on the boundary, an interface or a cut
+  std::vector<std::array<int, 2>> bnbr(nv, {-1, -1});
+  for (const auto& e : mesh.boundaryEdges) {
+    blocked[std::size_t(e.a)] = blocked[std::size_t(e.b)] = 1;
+    bnbr[std::size_t(e.a)][1] = e.b;
+    bnbr[std::size_t(e.b)][0] = e.a;
+  }
+  for (const auto& e : mesh.interfaceEdges) blocked[std::size_t(e.a)] = blocked[std::size_t(e.b)] = 1;
+  int tips = 0;
+  for (std::size_t t = 0; t < nv; ++t) {
+    if (lip[t] || bnbr[t][0] < 0 || !lip[std::size_t(bnbr[t][0])] || !lip[std::size_t(bnbr[t][1])]) continue;
+    ++tips;
+    std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
+    std::vector<int> from(nv, -1);
+    std::set<std::pair<double, int>> queue{{0.0, int(t)}};
+    dist[t] = 0;
+    int end = -1;
+    while (!queue.empty() && end < 0) {
+      const int v = queue.begin()->second;
+      queue.erase(queue.begin());
+      if (v != int(t) && blocked[std::size_t(v)]) {
+        end = v;
+        break;
+      }
+      for (int w : nbrs[std::size_t(v)]) {
+        if (lip[std::size_t(w)] || std::size_t(w) == t) continue;
+        const double d = dist[std::size_t(v)] + (mesh.vertices[std::size_t(w)] - mesh.vertices[std::size_t(v)]).norm();
+        if (d < dist[std::size_t(w)]) {
+          queue.erase({dist[std::size_t(w)], w});
+          dist[std::size_t(w)] = d;
+          from[std::size_t(w)] = v;
+          queue.insert({d, w});
+        }
+      }
+    }
+    ABLMG_REQUIRE(end >= 0, name << ": the slit tip at vertex " << t + 1 << " cannot be joined to the boundary");
+    for (int v = end; v != int(t); v = from[std::size_t(v)]) {
+      mesh.interfaceEdges.push_back({from[std::size_t(v)], v, kCutRef});
+      blocked[std::size_t(v)] = 1;
+    }
+    blocked[t] = 1;
+  }
+  return tips;
+}
 
 /// A chain of interface edges between two junctions (or a closed one), and its points after
 /// discretization: on the input polyline, at equal metric arc length, ends included.
@@ -154,15 +236,14 @@ Domain regionDomain(const MeshSubdomain& r, const Mesh2& mesh, const std::vector
   return Domain(std::move(outer), std::move(loops));
 }
 
-/// Bits of a point, for gluing the subdomain meshes at their shared (bit-identical) points.
-using PointKey = std::pair<std::uint64_t, std::uint64_t>;
-PointKey keyOf(const Vec2& p) { return {std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y())}; }
-
 /// The subdomain meshes glued into one: boundary vertices at the same point merged, edges met
 /// from both sides become interface edges, triangles take their subdomain's ref.
-void glue(std::vector<mesher::MeshResult>& parts, const std::vector<int>& refs, RemeshResult& out) {
+void glue(std::vector<mesher::MeshResult>& parts, const std::vector<int>& refs, const Curves& curves,
+          RemeshResult& out) {
   Mesh2& m = out.mesh;
-  std::map<PointKey, int> shared;
+  std::map<PointKey, int> shared;  // the interface points (only they are shared: slit lips are not)
+  for (const auto& c : curves.list)
+    for (const Vec2& p : c.points) shared.emplace(keyOf(p), -1);
   std::map<std::uint64_t, std::size_t> edgeAt;  // undirected → index in m.boundaryEdges
   std::vector<char> isInterface;
   for (std::size_t p = 0; p < parts.size(); ++p) {
@@ -172,10 +253,13 @@ void glue(std::vector<mesher::MeshResult>& parts, const std::vector<int>& refs, 
     std::vector<int> id(std::size_t(part.numVertices()));
     for (int v = 0; v < part.numVertices(); ++v) {
       const std::size_t vs = std::size_t(v);
-      if (onBoundary[vs]) {
-        const auto [it, added] = shared.emplace(keyOf(part.vertices[vs]), m.numVertices());
-        id[vs] = it->second;
-        if (!added) continue;
+      const auto it = onBoundary[vs] ? shared.find(keyOf(part.vertices[vs])) : shared.end();
+      if (it != shared.end()) {
+        if (it->second >= 0) {
+          id[vs] = it->second;
+          continue;
+        }
+        id[vs] = it->second = m.numVertices();
       } else {
         id[vs] = m.numVertices();
       }
@@ -198,8 +282,10 @@ void glue(std::vector<mesher::MeshResult>& parts, const std::vector<int>& refs, 
     }
   }
   std::vector<BoundaryEdge> boundary;
-  for (std::size_t e = 0; e < m.boundaryEdges.size(); ++e)
+  for (std::size_t e = 0; e < m.boundaryEdges.size(); ++e) {
+    if (isInterface[e] && m.boundaryEdges[e].ref == kCutRef) continue;  // a slit's cut: not an interface
     (isInterface[e] ? m.interfaceEdges : boundary).push_back(m.boundaryEdges[e]);
+  }
   m.boundaryEdges = std::move(boundary);
 }
 
@@ -228,6 +314,8 @@ void mapFeatures(const Mesh2& in, Mesh2& out, const std::string& name) {
 }  // namespace
 
 bool needsSubdomains(const Mesh2& mesh) {
+  const std::vector<char> lip = lipVertices(mesh);
+  if (std::find(lip.begin(), lip.end(), 1) != lip.end()) return true;
   if (!mesh.interfaceEdges.empty() || !mesh.corners.empty() || !mesh.requiredVertices.empty() ||
       !mesh.requiredEdges.empty() || !mesh.ridges.empty())
     return true;
@@ -235,8 +323,16 @@ bool needsSubdomains(const Mesh2& mesh) {
          mesh.triangleRefs.end();
 }
 
-void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, const mesher::MeshOptions& options,
+void remeshSubdomains(const Mesh2& input, const BackgroundMetricField& field, const mesher::MeshOptions& options,
                       const std::string& name, RemeshResult& out) {
+  Mesh2 cutMesh;
+  const std::vector<char> lip = lipVertices(input);
+  const bool slits = std::find(lip.begin(), lip.end(), 1) != lip.end();
+  if (slits) {
+    cutMesh = input;
+    cutSlits(cutMesh, name);
+  }
+  const Mesh2& mesh = slits ? cutMesh : input;
   MeshSubdomains sub = subdomainsFromMesh(mesh, name);
   std::unordered_map<std::uint64_t, char> required;
   for (const auto& e : mesh.requiredEdges) required[undirected(e[0], e[1])] = 1;
@@ -264,7 +360,7 @@ void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, con
       out.stats.secondsValidate += s.secondsValidate;
     }
   }
-  glue(parts, refs, out);
+  glue(parts, refs, curves, out);
   mapFeatures(mesh, out.mesh, name);
   out.mesh.requireValid(name + ": glued subdomains");
 }

@@ -16,7 +16,8 @@ orientation on input; counter-clockwise on output), boundary edges (k, 2) intege
 h (M = I/h^2). Results are read-only views into the C++ mesh (copy them to modify).
 
 Functions: mesh (domain + metric field), uniform_mesh, remesh (mesh + per-vertex metric),
-hessian_metric (P1 field -> metric of a target vertex count), quality (the statistics of
+hessian_metric (P1 field -> metric of a target vertex count), transfer (P1 fields to a new
+mesh: conservative projection or interpolation), quality (the statistics of
 `ablmg stats`), read_mesh / write_mesh (medit .mesh/.sol), write_vtu, loglog_plot.
 Classes: Mesh, Domain, MeshOptions.
 
@@ -36,5 +37,6 @@ threads keep running; a Python metric callable is called with the GIL, one call 
   ablmg::python::bindMesh(m);
   ablmg::python::bindAdapt(m);
   ablmg::python::bindIo(m);
+  ablmg::python::bindTransfer(m);
   m.attr("__version__") = ABLMG_VERSION;
 }

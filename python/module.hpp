@@ -17,8 +17,9 @@ struct PyMesh {
   py::dict stats;
 };
 
-void bindMesh(py::module_& m);   ///< Mesh, Domain, MeshOptions, mesh, uniform_mesh, remesh
-void bindAdapt(py::module_& m);  ///< hessian_metric, quality
-void bindIo(py::module_& m);     ///< read_mesh, write_mesh, write_vtu, loglog_plot
+void bindMesh(py::module_& m);      ///< Mesh, Domain, MeshOptions, mesh, uniform_mesh, remesh
+void bindAdapt(py::module_& m);     ///< hessian_metric, quality
+void bindIo(py::module_& m);        ///< read_mesh, write_mesh, write_vtu, loglog_plot
+void bindTransfer(py::module_& m);  ///< transfer
 
 }  // namespace ablmg::python

@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -224,4 +225,71 @@ TEST(RemeshSubdomains, InterfaceThatSeparatesNothingIsAnError) {
     EXPECT_NE(std::string(x.what()).find("line.mesh: interface edge"), std::string::npos) << x.what();
     EXPECT_NE(std::string(x.what()).find("separates nothing"), std::string::npos) << x.what();
   }
+}
+
+namespace {
+
+/// (−1, 1)² with the slit [0, 1] × {0} (Mitchell's reentrant corner with ω = 2π): a (2m)² grid
+/// whose vertices on the slit (x > 0, y = 0) are doubled, the lower cells using the twins; a
+/// zero-width gap between two boundary edge chains. Refs from the reader (0).
+Mesh2 slitSquare(int m) {
+  const int n = 2 * m, nv = (n + 1) * (n + 1);
+  std::ostringstream os;
+  os << "MeshVersionFormatted 2\nDimension 2\nVertices\n" << nv + m << "\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) os << double(i - m) / m << " " << double(j - m) / m << " 0\n";
+  for (int i = m + 1; i <= n; ++i) os << double(i - m) / m << " 0 0\n";  // twins, ids nv + (i − m)
+  const auto id = [&](int i, int j, bool lower) {
+    return j == m && i > m && lower ? nv + (i - m) : j * (n + 1) + i + 1;
+  };
+  os << "Triangles\n" << 2 * n * n << "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool lower = j < m;
+      const int a = id(i, j, lower), b = id(i + 1, j, lower), c = id(i + 1, j + 1, lower), d = id(i, j + 1, lower);
+      os << a << " " << b << " " << c << " 1\n" << a << " " << c << " " << d << " 1\n";
+    }
+  os << "End\n";
+  return io::parseMesh(os.str(), "slit.mesh");
+}
+
+}  // namespace
+
+TEST(RemeshSubdomains, SlitLipsStayApart) {
+  const Mesh2 in = slitSquare(4);
+  ASSERT_TRUE(in.validate(4.0).ok) << in.validate().firstProblem;
+  ASSERT_TRUE(needsSubdomains(in));
+  std::vector<Metric2> metric;  // finer towards the tip
+  for (const Vec2& p : in.vertices) metric.push_back(Metric2::isotropic(0.02 + 0.1 * p.norm()));
+  const RemeshResult r = remesh(in, metric);
+  ASSERT_TRUE(r.mesh.validate(4.0, 1e-12).ok) << r.mesh.validate().firstProblem;
+  EXPECT_TRUE(r.mesh.interfaceEdges.empty());  // the cut that split the work is not kept
+  // no edge crosses the slit (edges on it are the lips), and the two lips share no vertex but
+  // the tip: the upper lip runs x-decreasing (domain above, on its left), the lower x-increasing
+  long crossing = 0;
+  for (const auto& e : r.mesh.edges()) {
+    const Vec2 a = r.mesh.vertices[e[0]], b = r.mesh.vertices[e[1]];
+    const Vec2 s0(0, 0), s1(1, 0);  // a proper crossing: strictly on both sides, both ways
+    crossing += orient2d(a, b, s0) * orient2d(a, b, s1) < 0 && orient2d(s0, s1, a) * orient2d(s0, s1, b) < 0;
+  }
+  EXPECT_EQ(crossing, 0);
+  std::set<int> upper, lower;
+  long upperEdges = 0;
+  for (const auto& e : r.mesh.boundaryEdges) {
+    const Vec2 a = r.mesh.vertices[std::size_t(e.a)], b = r.mesh.vertices[std::size_t(e.b)];
+    if (a.y() != 0 || b.y() != 0 || a.x() < 0 || b.x() < 0) continue;
+    auto& lip = b.x() < a.x() ? upper : lower;
+    lip.insert(e.a);
+    lip.insert(e.b);
+    upperEdges += b.x() < a.x();
+  }
+  EXPECT_GE(upperEdges, 5);
+  std::vector<int> both;
+  std::set_intersection(upper.begin(), upper.end(), lower.begin(), lower.end(), std::back_inserter(both));
+  ASSERT_EQ(both.size(), 1u);
+  EXPECT_EQ(r.mesh.vertices[std::size_t(both[0])], Vec2(0, 0));
+  // the tip is a vertex
+  bool tip = false;
+  for (const Vec2& v : r.mesh.vertices) tip = tip || v == Vec2(0, 0);
+  EXPECT_TRUE(tip);
 }
