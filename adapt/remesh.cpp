@@ -71,7 +71,18 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   watch.restart();
   if (options.hgrad > 1) r.gradation = limitGradation(mesh, metric, {.hgrad = options.hgrad});
   r.secondsGradation = watch.seconds();
-  // 3. The domain from the input's boundary.
+  // 3. The domain from the input's boundary; with subdomains, interfaces or required
+  // entities, the subdomains one by one (remeshSubdomains).
+  if (needsSubdomains(mesh)) {
+    watch.restart();
+    const BackgroundMetricField field(std::move(mesh), std::move(metric),
+                                      BackgroundMetricField::MeshCheck::AlreadyValidated);
+    r.secondsBackgroundField = watch.seconds();
+    watch.restart();
+    remeshSubdomains(field.mesh(), field, options.mesh, name, r);
+    r.secondsMeshing = watch.seconds();
+    return r;
+  }
   watch.restart();
   const Domain domain = domainFromMeshBoundary(mesh, name);
   r.secondsDomain = watch.seconds();

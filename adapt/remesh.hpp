@@ -109,6 +109,29 @@ struct RemeshResult {
 /// closed loops ("<name>: ..."), a non-SPD metric; ablmg::Error if the mesher fails.
 RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions& options = {});
 
+/// Subdomains and interfaces. A mesh with several triangle refs, interface edges or features
+/// (Mesh2::corners, requiredVertices, requiredEdges, ridges) is remeshed subdomain by
+/// subdomain (MeshSubdomains, core/domain_from_mesh.hpp): the connection (paper §4) works on
+/// one domain, so each subdomain is meshed alone and no link can cross an interface. Each
+/// interface curve (interface edges between junctions) is cut once into round(metric length)
+/// pieces of equal metric length, and those points, fixed, with every piece kept as one edge,
+/// are the loop of both subdomains beside it; the meshes are glued at those points. The
+/// output has each subdomain's ref on its triangles, the interfaces as interfaceEdges (their
+/// refs kept), and the corners and required vertices/edges (all on boundaries or interfaces)
+/// at their exact coordinates, renumbered. A subdomain's area is kept to round-off where its
+/// boundary is straight between junctions and corners.
+/// Slits: a mesh whose boundary has distinct vertices at the same point (a zero-width gap, the
+/// two lips of a crack) is cut, for meshing only, from each tip (the boundary vertex between
+/// two lips) along the shortest path of mesh edges to the boundary or an interface; the lips
+/// then lie in different pieces and keep distinct vertices, the tip stays a vertex, and the
+/// cut is glued and dropped (no interface edge remains on it).
+bool needsSubdomains(const Mesh2& mesh);
+/// The subdomain path of remesh(): `mesh` valid, `field` its background field; fills out.mesh,
+/// out.metric, out.stats (counts summed over the subdomains). Throws InputError naming `name`
+/// for a required vertex inside a subdomain or a subdomain that is no valid Domain.
+void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, const mesher::MeshOptions& options,
+                      const std::string& name, RemeshResult& out);
+
 /// meshDomain(domain, BackgroundMetricField(mesh, metric), options): remeshing a domain the
 /// caller knows exactly (e.g. a curved boundary, which the input mesh only approximates).
 /// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop.

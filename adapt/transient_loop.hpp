@@ -96,8 +96,9 @@ struct IntervalRecord {
   double time = 0;  ///< the interval's start t_i (the remesh time)
   double timeEnd = 0;
   long vertices = 0, triangles = 0;
-  double l2AtStart =
-      0;  ///< ‖u − u_h‖_L2 at t_i right after the transfer (0 for the initial state's interpolant: its own error)
+  /// ‖u − u_h‖_L2 at t_i on the new mesh, right after the transfer (interval 0: the error of the
+  /// interpolated initial state)
+  double l2AtStart = 0;
   double l2AtEnd = 0;                                          ///< at the interval's end
   double spaceTimeL2 = 0, spaceTimeH1 = 0;                     ///< accumulated up to the interval's end
   double massDefect = 0;                                       ///< relative, of the kept transfer (0 when none)

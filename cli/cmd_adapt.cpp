@@ -58,13 +58,6 @@ namespace {
 constexpr const char* kCsvHeader =
     "cycle,vertices,triangles,l2_error,h1_error,l2_interp_error,q_mean,q_min,t_solve,t_recover,t_metric,t_mesh";
 
-bool parseOnOff(const std::string& text, const std::string& where) {
-  if (text == "on" || text == "true" || text == "1") return true;
-  if (text == "off" || text == "false" || text == "0") return false;
-  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
-  return false;
-}
-
 struct Args {
   std::string config;   ///< CONFIG.json (a problem of the user's own), or
   std::string problem;  ///< --problem NAME

@@ -41,6 +41,7 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
   -sol, -met SOL   per-vertex metric (type 1 sizes or type 3 tensors m11 m12 m22);
                    default IN.sol
+  -hsiz H          constant size H at every vertex (no .sol read), as MMG
   -met-field K     with several solution fields in SOL, use field K (1-based; type 1 or 3);
                    default: the one tensor field if there is exactly one, else the first
   -out OUT.mesh    output mesh (+ OUT.sol, the metric at the new vertices); default IN.o.mesh
@@ -70,9 +71,12 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
 /// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
 /// The reader's warnings (repaired quirks of the file) are printed to stderr, once the mesh is
 /// known valid, unless verbose < 0.
-std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field,
-                                                  int verbose) {
-  auto solRead = std::async(std::launch::async, [&sol, field] { return io::readSol(sol, -1, field); });
+/// With hsiz > 0 no .sol is read: every vertex gets the size hsiz (MMG's -hsiz).
+std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field, int verbose,
+                                                  double hsiz) {
+  auto solRead = std::async(std::launch::async, [&sol, field, hsiz] {
+    return hsiz > 0 ? std::vector<Metric2>() : io::readSol(sol, -1, field);
+  });
   Mesh2 mesh;
   std::vector<std::string> warnings;
   bool valid = false;
@@ -90,7 +94,10 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   try {
     metrics = solRead.get();
   } catch (...) { solOk = false; }
-  if (!solOk || long(metrics.size()) != mesh.numVertices()) metrics = io::readSol(sol, mesh.numVertices(), field);
+  if (hsiz > 0)
+    metrics.assign(std::size_t(mesh.numVertices()), Metric2::isotropic(hsiz));
+  else if (!solOk || long(metrics.size()) != mesh.numVertices())
+    metrics = io::readSol(sol, mesh.numVertices(), field);
   if (!valid) mesh.requireValid(in);
   if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
     for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
@@ -99,7 +106,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
-  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
+  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0;
   int verbose = 1, metField = 0;
   long long seed = 1;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
@@ -123,7 +130,10 @@ int runRemesh(const std::vector<std::string>& args) {
       metField = int(parseInteger(value(), "remesh: " + a, 1, 64));
     else if (a == "-hmin")
       hmin = parseNumber(value(), "remesh: " + a);
-    else if (a == "-hmax")
+    else if (a == "-hsiz") {
+      hsiz = parseNumber(value(), "remesh: " + a);
+      ABLMG_REQUIRE(hsiz > 0, "remesh: -hsiz must be > 0, got " << hsiz);
+    } else if (a == "-hmax")
       hmax = parseNumber(value(), "remesh: " + a);
     else if (a == "-hgrad")
       hgrad = parseNumber(value(), "remesh: " + a);
@@ -182,6 +192,7 @@ int runRemesh(const std::vector<std::string>& args) {
                               : warmStart == adapt::RemeshOptions::WarmStart::Off ? "off"
                                                                                   : "auto"},
                 {"metField", metField},
+                {"hsiz", hsiz},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
@@ -193,7 +204,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.mesh.progress = progress.callback();
   progress.update({.stage = "read"});
   Stopwatch watch;
-  auto inputs = readInputs(in, sol, metField, verbose);
+  auto inputs = readInputs(in, sol, metField, verbose, hsiz);
   const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.

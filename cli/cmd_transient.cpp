@@ -33,13 +33,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool parseOnOff(const std::string& text, const std::string& where) {
-  if (text == "on" || text == "true" || text == "1") return true;
-  if (text == "off" || text == "false" || text == "0") return false;
-  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
-  return false;
-}
-
 struct Args {
   std::string problem;
   std::map<std::string, double> params;

@@ -49,4 +49,11 @@ long long parseInteger(const std::string& text, const std::string& where, long l
   return v;
 }
 
+bool parseOnOff(const std::string& text, const std::string& where) {
+  if (text == "on" || text == "true" || text == "1") return true;
+  if (text == "off" || text == "false" || text == "0") return false;
+  ABLMG_REQUIRE(false, where << ": expected on or off, got '" << text << "'");
+  return false;
+}
+
 }  // namespace ablmg::cli

@@ -1,5 +1,5 @@
 #pragma once
-/// Numbers on the command line: one rule for every `ablmg` command.
+/// Numbers (and on/off switches) on the command line: one rule for every `ablmg` command.
 ///
 /// The whole argument is one number in C's decimal or scientific form ("0.5", "-2", "1e-3",
 /// an optional leading '+'); no surrounding blanks, no trailing text, no hexadecimal. NaN and
@@ -21,5 +21,7 @@ double parseNumber(const std::string& text, const std::string& where, Infinity i
 double parsePositiveNumber(const std::string& text, const std::string& where);
 /// An integer in [lo, hi].
 long long parseInteger(const std::string& text, const std::string& where, long long lo, long long hi);
+/// A switch: on / true / 1 or off / false / 0 ("<where>: expected on or off, got '<text>'").
+bool parseOnOff(const std::string& text, const std::string& where);
 
 }  // namespace ablmg::cli

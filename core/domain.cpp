@@ -28,6 +28,16 @@ void reverseLoop(BoundaryLoop& loop) {
   }
   loop.points = std::move(pts);
   loop.tags = std::move(tags);
+  if (!loop.fixedPoints.empty()) {
+    std::vector<char> f(n);
+    for (std::size_t k = 0; k < n; ++k) f[k] = loop.fixedPoints[(n - k) % n];
+    loop.fixedPoints = std::move(f);
+  }
+  if (!loop.keptSegments.empty()) {
+    std::vector<char> f(n);
+    for (std::size_t k = 0; k < n; ++k) f[k] = loop.keptSegments[(2 * n - k - 1) % n];
+    loop.keptSegments = std::move(f);
+  }
 }
 
 const char* loopName(std::size_t l) { return l == 0 ? "outer loop" : "hole"; }
@@ -45,6 +55,12 @@ Domain::Domain(BoundaryLoop outer, std::vector<BoundaryLoop> holes) {
     ABLMG_REQUIRE(loop.tags.size() == loop.points.size(), "domain: loop " << l << " has " << loop.points.size()
                                                                           << " points but " << loop.tags.size()
                                                                           << " segment tags");
+    ABLMG_REQUIRE(loop.fixedPoints.empty() || loop.fixedPoints.size() == loop.points.size(),
+                  "domain: loop " << l << " has " << loop.points.size() << " points but " << loop.fixedPoints.size()
+                                  << " fixedPoints flags");
+    ABLMG_REQUIRE(loop.keptSegments.empty() || loop.keptSegments.size() == loop.points.size(),
+                  "domain: loop " << l << " has " << loop.points.size() << " segments but " << loop.keptSegments.size()
+                                  << " keptSegments flags");
     for (std::size_t k = 0; k < loop.points.size(); ++k)
       ABLMG_REQUIRE(std::isfinite(loop.points[k].x()) && std::isfinite(loop.points[k].y()),
                     "domain: loop " << l << " point " << k << " has a non-finite coordinate");
@@ -146,7 +162,9 @@ std::vector<int> Domain::corners(int l) const {
     const Vec2 dout = loop.points[(k + 1) % n] - loop.points[k];
     const double turn = std::atan2(std::abs(cross(din, dout)), din.dot(dout));
     const bool tagChange = loop.tags[k] != loop.tags[(k + n - 1) % n];
-    if (tagChange || turn > std::numbers::pi / 6) out.push_back(k);
+    const bool fixed = (!loop.fixedPoints.empty() && loop.fixedPoints[k]) ||
+                       (!loop.keptSegments.empty() && (loop.keptSegments[k] || loop.keptSegments[(k + n - 1) % n]));
+    if (tagChange || fixed || turn > std::numbers::pi / 6) out.push_back(k);
   }
   return out;
 }

@@ -7,8 +7,9 @@
 ///
 /// A loop may be `smooth`: its points then sample a smooth curve (a circle given as a
 /// polygon of many points), and only its `corners` (points where the tag changes or the
-/// boundary turns by more than 30°) are fixed mesh vertices; the mesher places its own
-/// boundary nodes along the polyline. Otherwise every point is a corner and a mesh vertex.
+/// boundary turns by more than 30°, and the fixedPoints and ends of keptSegments) are fixed
+/// mesh vertices; the mesher places its own boundary nodes along the polyline. Otherwise every
+/// point is a corner and a mesh vertex.
 /// Units: the coordinates' own.
 #include "ablmg/core/vec2.hpp"
 
@@ -21,6 +22,12 @@ struct BoundaryLoop {
   std::vector<Vec2> points;
   std::vector<int> tags;  ///< one per segment; empty = all 1
   bool smooth = false;
+  /// Per point (empty = none): a corner whatever the turn (a required vertex, a junction of
+  /// subdomain interfaces). Always a mesh vertex at exactly this position.
+  std::vector<char> fixedPoints;
+  /// Per segment (empty = none): kept as one mesh edge, its end points corners, no node placed
+  /// inside it (a required edge, a piece of an interface discretized for both its sides).
+  std::vector<char> keptSegments;
 };
 
 class Domain {

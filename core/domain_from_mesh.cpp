@@ -3,7 +3,9 @@
 #include "ablmg/core/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <unordered_map>
 #include <vector>
 
@@ -103,6 +105,148 @@ Domain domainFromMeshBoundary(const Mesh2& mesh, const std::string& name) {
   try {
     return Domain(std::move(o), std::move(loops));
   } catch (const InputError& e) { throw InputError(name + ": boundary: " + e.what()); }
+}
+
+namespace {
+
+std::uint64_t undirected(int a, int b) {
+  return std::uint64_t(std::uint32_t(std::min(a, b))) << 32 | std::uint32_t(std::max(a, b));
+}
+
+/// Triangles connected across non-interface edges: component id per triangle, in order of
+/// their smallest triangle.
+std::vector<int> components(const Mesh2& mesh, const std::vector<std::array<int, 3>>& nb,
+                            const std::unordered_map<std::uint64_t, int>& interfaceRef) {
+  std::vector<int> comp(mesh.triangles.size(), -1), stack;
+  int nc = 0;
+  for (int t0 = 0; t0 < mesh.numTriangles(); ++t0) {
+    if (comp[std::size_t(t0)] >= 0) continue;
+    comp[std::size_t(t0)] = nc;
+    stack.push_back(t0);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      const auto& tr = mesh.triangles[std::size_t(t)];
+      for (int k = 0; k < 3; ++k) {
+        const int u = nb[std::size_t(t)][k];
+        if (u < 0 || comp[std::size_t(u)] >= 0) continue;
+        if (interfaceRef.count(undirected(tr[(k + 1) % 3], tr[(k + 2) % 3]))) continue;
+        comp[std::size_t(u)] = nc;
+        stack.push_back(u);
+      }
+    }
+    ++nc;
+  }
+  return comp;
+}
+
+/// Junction flags (see MeshSubdomains::junction) from the boundary and interface edges.
+std::vector<char> junctions(const Mesh2& mesh) {
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<char> j(nv, 0), onBoundary(nv, 0), onInterface(nv, 0);
+  std::vector<int> degree(nv, 0), firstRef(nv, 0);
+  std::vector<std::array<int, 2>> ends(nv, {-1, -1});
+  const auto visit = [&](const BoundaryEdge& e, std::vector<char>& on) {
+    for (int k = 0; k < 2; ++k) {
+      const int v = k == 0 ? e.a : e.b, w = k == 0 ? e.b : e.a;
+      const std::size_t vs = std::size_t(v);
+      if (degree[vs] == 0) firstRef[vs] = e.ref;
+      if (degree[vs] < 2) ends[vs][std::size_t(degree[vs])] = w;
+      if (firstRef[vs] != e.ref) j[vs] = 1;
+      ++degree[vs];
+      on[vs] = 1;
+    }
+  };
+  for (const auto& e : mesh.boundaryEdges) visit(e, onBoundary);
+  for (const auto& e : mesh.interfaceEdges) visit(e, onInterface);
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (degree[v] == 0) continue;
+    if (degree[v] != 2 || (onBoundary[v] && onInterface[v])) j[v] = 1;
+    if (onInterface[v] && !onBoundary[v] && degree[v] == 2) {  // a turn of more than 30°
+      const Vec2 din = mesh.vertices[v] - mesh.vertices[std::size_t(ends[v][0])];
+      const Vec2 dout = mesh.vertices[std::size_t(ends[v][1])] - mesh.vertices[v];
+      if (std::atan2(std::abs(cross(din, dout)), din.dot(dout)) > std::numbers::pi / 6) j[v] = 1;
+    }
+  }
+  for (int v : mesh.corners) j[std::size_t(v)] = 1;
+  for (int v : mesh.requiredVertices) j[std::size_t(v)] = 1;
+  for (const auto* list : {&mesh.requiredEdges, &mesh.ridges})
+    for (const auto& e : *list) j[std::size_t(e[0])] = j[std::size_t(e[1])] = 1;
+  return j;
+}
+
+}  // namespace
+
+MeshSubdomains subdomainsFromMesh(const Mesh2& mesh, const std::string& name) {
+  std::unordered_map<std::uint64_t, int> boundaryRef, interfaceRef;
+  for (const auto& e : mesh.boundaryEdges) boundaryRef[undirected(e.a, e.b)] = e.ref;
+  for (const auto& e : mesh.interfaceEdges) interfaceRef[undirected(e.a, e.b)] = e.ref;
+  const auto nb = mesh.triangleNeighbours();
+  const std::vector<int> comp = components(mesh, nb, interfaceRef);
+  MeshSubdomains out;
+  out.junction = junctions(mesh);
+  const int nc = comp.empty() ? 0 : *std::max_element(comp.begin(), comp.end()) + 1;
+  out.regions.resize(std::size_t(nc));
+  for (int t = 0; t < mesh.numTriangles(); ++t) {
+    auto& r = out.regions[std::size_t(comp[std::size_t(t)])];
+    if (r.triangles.empty()) r.ref = t < int(mesh.triangleRefs.size()) ? mesh.triangleRefs[std::size_t(t)] : 0;
+    r.triangles.push_back(t);
+  }
+  std::vector<int> next(mesh.vertices.size(), -1), nextRef(mesh.vertices.size(), 0);
+  std::vector<char> nextInterface(mesh.vertices.size(), 0), used(mesh.vertices.size(), 0);
+  for (auto& r : out.regions) {
+    std::vector<int> starts;
+    for (int t : r.triangles) {
+      const auto& tr = mesh.triangles[std::size_t(t)];
+      for (int k = 0; k < 3; ++k) {
+        const int a = tr[(k + 1) % 3], b = tr[(k + 2) % 3], u = nb[std::size_t(t)][k];
+        const bool inside = u >= 0 && comp[std::size_t(u)] == comp[std::size_t(t)];
+        if (inside) {
+          ABLMG_REQUIRE(!interfaceRef.count(undirected(a, b)),
+                        name << ": interface edge (" << a + 1 << ", " << b + 1
+                             << ") has the same subdomain on both sides (a line that separates nothing)");
+          continue;
+        }
+        ABLMG_REQUIRE(next[std::size_t(a)] < 0,
+                      name << ": the boundary of subdomain " << r.ref << " touches itself at vertex " << a + 1);
+        next[std::size_t(a)] = b;
+        nextInterface[std::size_t(a)] = u >= 0;
+        const auto& refs = u >= 0 ? interfaceRef : boundaryRef;
+        const auto it = refs.find(undirected(a, b));
+        nextRef[std::size_t(a)] = it == refs.end() ? 0 : it->second;
+        starts.push_back(a);
+      }
+    }
+    std::sort(starts.begin(), starts.end());
+    std::vector<double> areas;
+    for (int s : starts) {
+      if (used[std::size_t(s)]) continue;
+      std::vector<int> loop, refs;
+      std::vector<char> itf;
+      double area = 0;
+      int v = s;
+      do {
+        used[std::size_t(v)] = 1;
+        loop.push_back(v);
+        refs.push_back(nextRef[std::size_t(v)]);
+        itf.push_back(nextInterface[std::size_t(v)]);
+        const int w = next[std::size_t(v)];
+        ABLMG_REQUIRE(w >= 0, name << ": the boundary of subdomain " << r.ref << " is not closed at vertex " << v + 1);
+        area += 0.5 * cross(mesh.vertices[std::size_t(v)], mesh.vertices[std::size_t(w)]);
+        v = w;
+      } while (v != s);
+      r.loops.push_back(std::move(loop));
+      r.segmentRefs.push_back(std::move(refs));
+      r.segmentInterface.push_back(std::move(itf));
+      areas.push_back(area);
+    }
+    const std::size_t outer = std::size_t(std::max_element(areas.begin(), areas.end()) - areas.begin());
+    std::swap(r.loops[0], r.loops[outer]);
+    std::swap(r.segmentRefs[0], r.segmentRefs[outer]);
+    std::swap(r.segmentInterface[0], r.segmentInterface[outer]);
+    for (int s : starts) next[std::size_t(s)] = -1, used[std::size_t(s)] = 0;
+  }
+  return out;
 }
 
 }  // namespace ablmg

@@ -24,4 +24,32 @@ namespace ablmg {
 /// a loop is not closed or two loops touch, or the loops do not form a valid Domain.
 Domain domainFromMeshBoundary(const Mesh2& mesh, const std::string& name = "mesh");
 
+/// One subdomain of a mesh: a connected set of triangles of one ref, bounded by the mesh's
+/// boundary edges and its interface edges (Mesh2::interfaceEdges).
+struct MeshSubdomain {
+  int ref = 0;                                      ///< the triangles' ref
+  std::vector<int> triangles;                       ///< its triangles, ascending
+  std::vector<std::vector<int>> loops;              ///< vertex ids; [0] the outer loop (CCW), then holes (CW);
+                                                    ///< segment k joins loops[i][k] → loops[i][k + 1 mod n]
+  std::vector<std::vector<int>> segmentRefs;        ///< per segment: the edge's ref
+  std::vector<std::vector<char>> segmentInterface;  ///< per segment: an interface edge (shared)
+};
+
+/// The subdomains of `mesh` and the vertices every subdomain must keep where it is.
+struct MeshSubdomains {
+  std::vector<MeshSubdomain> regions;  ///< in order of their smallest triangle
+  /// Per vertex: a junction, fixed in every remesh: where interfaces meet each other or the
+  /// boundary, where the ref of the boundary or interface changes, where an interface turns by
+  /// more than 30°, the mesh's corners, required vertices and the ends of required edges and
+  /// ridges. Closed interface curves with none get one at their smallest vertex.
+  std::vector<char> junction;
+};
+
+/// Splits a valid `mesh` (Mesh2::validate) into subdomains: triangles connected across edges
+/// that are not interface edges. Each subdomain's boundary is chained into loops (starting at
+/// their smallest vertex; the loop of largest area is the outer one). Throws InputError
+/// "<name>: ..." (vertices 1-based) if an interface edge has the same subdomain on both sides
+/// (a line that separates nothing), or a subdomain's boundary touches itself at a vertex.
+MeshSubdomains subdomainsFromMesh(const Mesh2& mesh, const std::string& name = "mesh");
+
 }  // namespace ablmg

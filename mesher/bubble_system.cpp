@@ -14,6 +14,10 @@
 namespace ablmg::mesher {
 namespace {
 
+/// The midpoint of arcs a ≤ b as both nodes of a pair compute it (same operands, same
+/// rounding): a ≤ chainMidpoint(a, b) ≤ b in floating point.
+double chainMidpoint(double a, double b) { return a + 0.5 * (b - a); }
+
 /// Ids i in [0, n) with pred(i), ascending, collected in parallel: contiguous blocks per
 /// thread, each copied to its offset in `out` (the result does not depend on the thread count).
 /// `visit(i)` runs first for every i (the caller's per-bubble work fused into the same pass);
@@ -94,9 +98,52 @@ void BubbleSystem::setBounds() {
     if (su > hi) su -= L;
     sLo_[i] = lo;
     sHi_[i] = hi;
-    const double margin = 1e-4 * (hi - lo);
-    s_[i] = std::clamp(su, lo + margin, hi - margin);
+    s_[i] = su;
   }
+  linkChains();
+}
+
+void BubbleSystem::linkChains() {
+  const int n = nodes_.size();
+  chainPrev_.assign(std::size_t(n), -1);
+  chainNext_.assign(std::size_t(n), -1);
+  chainShift_.assign(std::size_t(n), 0.0);
+  segmentIds_.clear();
+  for (int l = 0; l < int(geo_->loops().size()); ++l) {
+    std::vector<int> ids;
+    for (int i = 0; i < n; ++i)
+      if (nodes_.loops[i] == l && nodes_.kinds[i] != NodeKind::Interior) ids.push_back(i);
+    if (ids.empty()) continue;
+    std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) { return geo_->wrap(l, s_[a]) < geo_->wrap(l, s_[b]); });
+    const bool cornerless = geo_->loops()[l].corners.empty();
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const int i = ids[k], j = ids[(k + 1) % ids.size()];
+      chainNext_[i] = j;
+      chainPrev_[j] = i;
+      // A corner-less loop's arc is kept in one turn, [0, L), except for its drift: the pair
+      // that closes the loop compares j's arc one turn on.
+      if (cornerless) {
+        if (k == 0) s_[i] = geo_->wrap(l, s_[i]);
+        if (k + 1 < ids.size()) s_[j] = geo_->wrap(l, s_[j]);
+        chainShift_[i] = k + 1 == ids.size() ? geo_->loops()[l].length : 0.0;
+      }
+    }
+    for (int i : ids)
+      if (nodes_.kinds[i] == NodeKind::Segment) segmentIds_.push_back(i);
+  }
+  std::sort(segmentIds_.begin(), segmentIds_.end());
+  sStart_ = s_;
+}
+
+bool BubbleSystem::canSlideTo(int i, double s) const {
+  const int j = chainNext_[i], k = chainPrev_[i];
+  if (j < 0 || j == i) return true;  // alone on its loop
+  const bool upOk =
+      nodes_.kinds[j] == NodeKind::Vertex ? s < sHi_[i] : s < chainMidpoint(sStart_[i], sStart_[j] + chainShift_[i]);
+  if (!upOk) return false;
+  return nodes_.kinds[k] == NodeKind::Vertex
+             ? s > sLo_[i]
+             : s + chainShift_[k] > chainMidpoint(sStart_[k], sStart_[i] + chainShift_[k]);
 }
 
 bool BubbleSystem::sameChain(int i, int j) const {
@@ -283,6 +330,7 @@ void BubbleSystem::advance(const DynamicsParams& p) {
   movedSinceRefresh_.resize(std::size_t(n), 1);
   disp_.resize(std::size_t(n), 0.0);
   clear_.resize(std::size_t(n), 0.0);
+  for (int i : segmentIds_) sStart_[i] = s_[i];  // the chain bounds use the arcs before the step
   const int m = int(list_.size());
 #pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
   for (int k = 0; k < m; ++k) {
@@ -296,15 +344,20 @@ void BubbleSystem::advance(const DynamicsParams& p) {
         const Vec2 t = geo_->tangentAt(l, s_[i]);
         const double vt = vel_[i].dot(t) + dtm * (force_[i].dot(t) - p.damping * vel_[i].dot(t));
         double s = s_[i] + p.dt * vt;
-        const double margin = std::isfinite(sLo_[i]) ? 1e-4 * (sHi_[i] - sLo_[i]) : 0.0;
-        if (s <= sLo_[i] + margin || s >= sHi_[i] - margin) {
-          // Halfway from where it was to the corner's margin, not onto it: two nodes pushed into
-          // the same corner in one step would otherwise land on the same point (a duplicate
-          // the connection refuses); halving keeps distinct nodes distinct and in order.
-          s = s <= sLo_[i] + margin ? 0.5 * (s_[i] + sLo_[i] + margin) : 0.5 * (s_[i] + sHi_[i] - margin);
-          vel_[i] = Vec2::Zero();
-        } else {
+        if (canSlideTo(i, s)) {
           vel_[i] = vt * t;
+        } else {
+          // Past the bound towards a neighbour (canSlideTo): halfway there if that is inside,
+          // else stay; the nodes of a chain keep their order and stay distinct either way.
+          const bool up = s > s_[i];
+          const int nb = up ? chainNext_[i] : chainPrev_[i];
+          double bound = up ? sHi_[i] : sLo_[i];
+          if (nodes_.kinds[nb] != NodeKind::Vertex)
+            bound = up ? chainMidpoint(sStart_[i], sStart_[nb] + chainShift_[i])
+                       : chainMidpoint(sStart_[nb], sStart_[i] + chainShift_[nb]) - chainShift_[nb];
+          s = 0.5 * (s_[i] + bound);
+          if (!canSlideTo(i, s)) s = s_[i];
+          vel_[i] = Vec2::Zero();
         }
         s_[i] = s;
         nodes_.positions[i] = geo_->pointAt(l, s);
@@ -443,13 +496,18 @@ void BubbleSystem::structureChanged() {
   nextList_.valid = false;
 }
 
-std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
+std::vector<int> BubbleSystem::remove(const std::vector<char>& kill, bool segmentsToo) {
   structureChanged();
   const int n = nodes_.size();
   std::vector<int> map(n, -1);
   int m = 0;
+  bool relink = false;
   for (int i = 0; i < n; ++i) {
-    if (kill[i] && nodes_.kinds[i] == NodeKind::Interior) continue;
+    const bool segment = nodes_.kinds[i] == NodeKind::Segment;
+    if (kill[i] && (nodes_.kinds[i] == NodeKind::Interior || (segmentsToo && segment))) {
+      relink = relink || segment;
+      continue;
+    }
     map[i] = m;
     nodes_.positions[m] = nodes_.positions[i];
     nodes_.kinds[m] = nodes_.kinds[i];
@@ -469,8 +527,17 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
     if (i < int(disp_.size())) disp_[m] = disp_[i];
     if (i < int(refPos_.size())) refPos_[m] = refPos_[i];
     if (i < int(clear_.size())) clear_[m] = clear_[i];
+    chainPrev_[m] = chainPrev_[i];
+    chainNext_[m] = chainNext_[i];
+    chainShift_[m] = chainShift_[i];
+    sStart_[m] = sStart_[i];
     ++m;
   }
+  for (int i = 0; i < m; ++i) {
+    if (chainPrev_[i] >= 0) chainPrev_[i] = map[chainPrev_[i]];
+    if (chainNext_[i] >= 0) chainNext_[i] = map[chainNext_[i]];
+  }
+  for (int& i : segmentIds_) i = map[i];
   nodes_.positions.resize(m);
   nodes_.kinds.resize(m);
   nodes_.loops.resize(m);
@@ -489,6 +556,11 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill) {
   disp_.resize(m, 0.0);
   if (int(refPos_.size()) > m) refPos_.resize(m);
   clear_.resize(m, 0.0);
+  chainPrev_.resize(m);
+  chainNext_.resize(m);
+  chainShift_.resize(m);
+  sStart_.resize(m);
+  if (relink) linkChains();
   return map;
 }
 
@@ -501,6 +573,10 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   s_.push_back(-1.0);
   sLo_.push_back(-std::numeric_limits<double>::infinity());
   sHi_.push_back(std::numeric_limits<double>::infinity());
+  chainPrev_.push_back(-1);
+  chainNext_.push_back(-1);
+  chainShift_.push_back(0.0);
+  sStart_.push_back(-1.0);
   vel_.push_back(Vec2::Zero());
   force_.push_back(Vec2::Zero());
   metrics_.push_back(m);

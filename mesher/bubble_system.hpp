@@ -89,11 +89,12 @@ class BubbleSystem {
   void resetTravel(std::span<const int> ids);
 
   /// Population edits (§3.4). Removal keeps the relative order of the survivors; returns
-  /// old → new index map (−1 for removed). Only Interior nodes may be removed. Added bubbles
+  /// old → new index map (−1 for removed). Only Interior nodes are removed, and Segment nodes
+  /// too when `segmentsToo` (the chains are linked again); Vertex nodes never. Added bubbles
   /// are awake and kicked; the caller kicks the neighbours of removed ones.
-  std::vector<int> remove(const std::vector<char>& kill);
+  std::vector<int> remove(const std::vector<char>& kill, bool segmentsToo = false);
   void addInterior(const Vec2& x, const Metric2& m);
-  /// Moves Interior bubble i to x (defect moves, dislocations.hpp) if x is strictly inside:
+  /// Moves Interior bubble i to x (defect kicks, defects.hpp) if x is strictly inside:
   /// velocity zeroed, bubble kicked. Returns false (nothing changed) otherwise.
   bool displace(int i, const Vec2& x);
 
@@ -102,6 +103,15 @@ class BubbleSystem {
 
  private:
   void setBounds();
+  /// Chain links of the boundary nodes (chainPrev_, chainNext_, chainShift_, segmentIds_) from
+  /// their arcs; wraps the arcs of corner-less loops into one turn.
+  void linkChains();
+  /// Segment node i may move to arc s in this step: strictly before the next node of its chain
+  /// and strictly after the previous one, where a corner counts as itself and a moving neighbour
+  /// as the midpoint of the pair's arcs before the step (chainMidpoint, the same value on both
+  /// sides). Both nodes of a pair may move at once, so the chain keeps its order and its nodes
+  /// stay distinct: an invariant of construction, not a repair.
+  bool canSlideTo(int i, double s) const;
   /// Segment node i and node j on the same piece of loop between two corners (j a Segment
   /// node of that piece or one of its two corners).
   bool sameChain(int i, int j) const;
@@ -131,6 +141,13 @@ class BubbleSystem {
   NodeSet nodes_;
   std::vector<double> s_, sLo_,
       sHi_;  ///< unwrapped arc length; arc of the corners around it (Segment nodes, ±inf if none)
+  /// Boundary nodes: the previous and next boundary node along the loop (−1 for Interior), and
+  /// the arc added to the next node's arc to compare it with this one's (the loop length for the
+  /// pair that closes a corner-less loop, else 0). Invariant: s_[i] < s_[next] + shift.
+  std::vector<int> chainPrev_, chainNext_;
+  std::vector<double> chainShift_;
+  std::vector<int> segmentIds_;  ///< Segment nodes, ascending
+  std::vector<double> sStart_;   ///< s_ at the start of the current step (Segment nodes)
   std::vector<Vec2> vel_, force_;
   std::vector<double> res_, disp_;
   std::vector<double> clear_;  ///< Interior nodes: lower bound of the Euclidean distance to the boundary (0 = unknown)

@@ -71,6 +71,7 @@ DomainGeometry::DomainGeometry(const Domain& domain) {
     const int n = int(p.points.size());
     p.tags = dl[l].tags.empty() ? std::vector<int>(n, 1) : dl[l].tags;
     p.corners = domain.corners(l);
+    p.kept = dl[l].keptSegments;
     p.cum.assign(n + 1, 0.0);
     for (int k = 0; k < n; ++k) {
       p.cum[k + 1] = p.cum[k] + (p.points[(k + 1) % n] - p.points[k]).norm();
@@ -258,7 +259,17 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     };
     if (poly.corners.empty()) {
       const int pieces = std::max(3, int(std::lround(LM)));
-      for (int i = 0; i < pieces; ++i) push(NodeKind::Segment, euclidAt(LM * i / pieces));
+      double last = -1.0;
+      Vec2 first{}, lastPoint{};
+      for (int i = 0; i < pieces; ++i) {  // strictly increasing arcs, distinct points (as below)
+        const double s = euclidAt(LM * i / pieces);
+        const Vec2 x = geo.pointAt(l, s);
+        if (i > 0 && (!(s > last) || x == lastPoint || x == first)) continue;
+        if (i == 0) first = x;
+        push(NodeKind::Segment, s);
+        last = s;
+        lastPoint = x;
+      }
       continue;
     }
     const int nc = int(poly.corners.size());
@@ -267,9 +278,25 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
       const double s1 = c + 1 < nc ? poly.cum[poly.corners[c + 1]] : poly.cum[poly.corners[0]] + poly.length;
       const double m0 = metricAt(s0);
       const double m1 = s1 <= poly.length ? metricAt(s1) : metricAt(s1 - poly.length) + LM;
-      const int pieces = std::max(1, int(std::lround(m1 - m0)));
+      const bool kept = !poly.kept.empty() && poly.kept[std::size_t(poly.corners[c])] &&
+                        poly.corners[(c + 1) % nc] == (poly.corners[c] + 1) % n;  // one kept segment
+      const int pieces = kept ? 1 : std::max(1, int(std::lround(m1 - m0)));
       push(NodeKind::Vertex, s0);
-      for (int i = 1; i < pieces; ++i) push(NodeKind::Segment, euclidAt(m0 + (m1 - m0) * i / pieces));
+      // Strictly increasing arcs and distinct points, corners included: where the metric size
+      // falls below the resolution of the tables (or of the coordinates), a node that would
+      // coincide with its predecessor or with the next corner is not placed.
+      double last = s0;
+      Vec2 lastPoint = geo.pointAt(l, s0);
+      const Vec2 endPoint = geo.pointAt(l, s1);
+      for (int i = 1; i < pieces; ++i) {
+        double s = euclidAt(m0 + (m1 - m0) * i / pieces);
+        if (s < s0) s += poly.length;  // the piece that wraps past the loop's start
+        const Vec2 x = geo.pointAt(l, s);
+        if (!(s > last && s < s1) || x == lastPoint || x == endPoint) continue;
+        push(NodeKind::Segment, s);
+        last = s;
+        lastPoint = x;
+      }
     }
   }
 }

@@ -37,6 +37,7 @@ struct LoopPolyline {
   std::vector<double> cum;   ///< cum[k] = Euclidean arc length at points[k]; cum[n] = length
   std::vector<int> tags;     ///< one per segment
   std::vector<int> corners;  ///< corner point indices (Domain::corners)
+  std::vector<char> kept;    ///< per segment: BoundaryLoop::keptSegments (empty = none)
   double length = 0;
 };
 

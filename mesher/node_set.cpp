@@ -1,6 +1,7 @@
 #include "ablmg/mesher/node_set.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace ablmg::mesher {
 
@@ -29,6 +30,22 @@ void AdjacencyLists::compact() {
   offsets[n] = w;
   ids.resize(std::size_t(w));
   ends.clear();
+}
+
+long coincidentNodes(const NodeSet& nodes, const AdjacencyLists& adj, std::vector<char>& drop) {
+  const int n = nodes.size();
+  drop.assign(std::size_t(n), 0);
+  long count = 0;
+  // Enum order is Vertex < Segment < Interior: a lower (kind, index) ranks higher.
+  auto below = [&](int a, int b) { return std::pair(nodes.kinds[a], a) > std::pair(nodes.kinds[b], b); };
+  for (int i = 0; i < n; ++i)
+    for (int j : adj.neighbours(i)) {
+      if (j <= i || nodes.positions[i] != nodes.positions[j]) continue;
+      const int lower = below(i, j) ? i : j;
+      count += drop[std::size_t(lower)] == 0;
+      drop[std::size_t(lower)] = 1;
+    }
+  return count;
 }
 
 }  // namespace ablmg::mesher

@@ -46,4 +46,12 @@ struct AdjacencyLists {
   void compact();
 };
 
+/// The nodes to drop so that no two share a point (exact coordinate equality): of each pair
+/// of coincident nodes the one of lower rank is marked, Interior below Segment below Vertex,
+/// and of equal kinds the higher index; so of every group exactly its top node stays and a
+/// boundary node is never dropped for an interior one. Pairs are read from `adj`, which must
+/// hold every pair within its radius at the current positions (a coincident pair is at metric
+/// distance 0). Returns the number marked (0: `drop` is all zero). Deterministic, O(Σ rows).
+long coincidentNodes(const NodeSet& nodes, const AdjacencyLists& adj, std::vector<char>& drop);
+
 }  // namespace ablmg::mesher

@@ -7,6 +7,7 @@
 #include "ablmg/mesher/bubble_system.hpp"
 #include "ablmg/mesher/defects.hpp"
 #include "ablmg/mesher/initial_placement.hpp"
+#include "ablmg/mesher/placement_schedule.hpp"
 #include "ablmg/mesher/population.hpp"
 
 #include <omp.h>
@@ -119,9 +120,298 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDis
   return near > 0 ? double(unit) / double(near) : 1.0;
 }
 
-}  // namespace
+/// Accumulates the seconds of its scope into `total`.
+struct ScopedSeconds {
+  double& total;
+  Clock::time_point start = Clock::now();
+  ~ScopedSeconds() { total += since(start); }
+};
 
-PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
+/// The §3 driver: initial placement, then per step the stop rules, one dynamics step, a
+/// population pass when due and the adjacency upkeep; then the output. The schedules and stop
+/// rules are placement_schedule.hpp's; this class only holds the state they act on.
+class NodePlacer {
+ public:
+  NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options);
+  PlacementResult run();
+
+ private:
+  BubbleSystem initialBubbles(const Domain& domain);
+  void startDynamics();
+  bool keepGoing(int step);  ///< the stop rules at the start of a step; false: stop now
+  bool convergedWithEveryBubbleAwake();
+  bool annealDefects(int step);
+  bool stopEarly(int step);
+  void advance();
+  void populationPass(int step);
+  void keepAdjacency(int done);
+  PlacementResult output();
+
+  const PlacementOptions& o_;
+  const MetricField& metric_;
+  DomainGeometry geo_;
+  PlacementResult result_;
+  PlacementStats& st_ = result_.stats;
+  BubbleSystem sys_;
+  AdjacencyLists adj_;
+  DynamicsParams p_;
+  PopulationSchedule population_;
+  DefectSchedule defects_;
+  StallRule stall_;
+  QualityPlateau plateau_;
+  RelaxBeforeStop relax_;
+  bool constant_;
+  double residual_ = 0, target_ = 0, sleepBelow_ = 0;
+  bool allAwake_ = true;  ///< the last residual covers every bubble
+  long fixedCount_ = 0;   ///< Vertex bubbles: never awake
+};
+
+NodePlacer::NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options)
+    : o_(options),
+      metric_(metric),
+      geo_(domain),
+      sys_(initialBubbles(domain)),
+      p_{options.k0, options.mass, options.damping, options.timeStep, options.pairDistance},
+      population_(st_.predictedNodes, options.maxSteps),
+      defects_(options.defectPasses, options.defectEvery),
+      stall_(options.stallSteps),
+      plateau_(options.plateauSteps, options.plateauGain),
+      relax_(options.finalRelaxSteps),
+      constant_(metric.isConstant()) {
+  startDynamics();
+}
+
+/// 1. Initial placement (§3.1), after checking the predicted size.
+BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
+  ScopedSeconds timer{st_.secondsInitial};
+  const int holes = int(domain.loops().size()) - 1;
+  const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo_, metric_, 64);
+  ABLMG_REQUIRE(coarse <= double(o_.maxNodes), "placeNodes: the metric asks for about "
+                                                   << long(coarse) << " nodes, more than maxNodes = " << o_.maxNodes);
+  const double areaM = metricArea(domain, geo_, metric_, 256);
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo_, metric_, nodes, arc);
+  st_.predictedNodes = predictedNodeCount(areaM, nodes.size(), holes);
+  ABLMG_REQUIRE(st_.predictedNodes <= o_.maxNodes,
+                "placeNodes: predicted node count " << st_.predictedNodes << " exceeds maxNodes = " << o_.maxNodes);
+  const double spacing = std::sqrt(domain.area() / std::max<double>(st_.predictedNodes, 1.0));
+  const int firstInterior = nodes.size();
+  placeInteriorNodes(geo_, metric_, nodes, spacing, o_.lattice, o_.warmStart);
+  zOrder(nodes, firstInterior);
+  arc.resize(nodes.size(), -1.0);
+  BubbleSystem sys(geo_, std::move(nodes), std::move(arc));
+  sys.updateMetrics(metric_);
+  st_.initialNodes = sys.size();
+  return sys;
+}
+
+/// The lists, the first forces and the convergence target.
+void NodePlacer::startDynamics() {
+  {
+    ScopedSeconds timer{st_.secondsAdjacency};
+    adj_ = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+    sys_.clearMoved();
+  }
+  {
+    ScopedSeconds timer{st_.secondsDynamics};
+    residual_ = sys_.computeForces(adj_, p_);
+  }
+  st_.initialResidual = residual_;
+  // Converged: the residual dropped by relativeTolerance (100× by default) or below tolerance.
+  // A warm start begins near equilibrium, so its own initial residual is no yardstick (×100
+  // below an already small residual is polishing that can stall): it is measured against a
+  // fresh lattice's, which is 0.5–0.7 on the paper disks (kLatticeResidual).
+  constexpr double kLatticeResidual = 0.5;
+  const double reference = o_.warmStart.empty() ? st_.initialResidual : std::max(st_.initialResidual, kLatticeResidual);
+  target_ = std::max(o_.tolerance, o_.relativeTolerance * reference);
+  sleepBelow_ = 0.5 * target_;  // active set: see BubbleSystem::updateActivity
+  for (int i = 0; i < sys_.size(); ++i) fixedCount_ += sys_.nodes().kinds[i] == NodeKind::Vertex;
+}
+
+/// 2. Dynamics (§3.2) interleaved with population control (§3.4), then 3. the output.
+PlacementResult NodePlacer::run() {
+  for (int step = 0; step < o_.maxSteps; ++step) {
+    if (relax_.over(step)) break;
+    if (step > 0) {
+      ScopedSeconds timer{st_.secondsDynamics};
+      residual_ = sys_.computeForces(adj_, p_);
+    }
+    if (!keepGoing(step)) break;
+    advance();
+    populationPass(step);
+    keepAdjacency(step + 1);
+  }
+  return output();
+}
+
+/// Convergence (with the defect passes it may start), then the stall and plateau rules.
+bool NodePlacer::keepGoing(int step) {
+  if (residual_ < target_ && population_.settled()) {
+    if (convergedWithEveryBubbleAwake() && !(defects_.left() && annealDefects(step))) return false;
+  } else if (population_.settled() && defects_.due(step)) {
+    annealDefects(step);
+  }
+  if (stall_.enabled() && !relax_.relaxing() && stall_.stalled(step, residual_)) {
+    st_.stalled = true;
+    if (stopEarly(step)) return false;
+  }
+  if (plateau_.sampleDue(step) && !relax_.relaxing()) {
+    double share;
+    {
+      ScopedSeconds timer{st_.secondsDynamics};
+      share = unitPairShare(sys_, adj_, o_.pairDistance);
+    }
+    if (plateau_.reached(share, population_.settled() || population_.nearlySettled(), step - stall_.markStep())) {
+      st_.qualityPlateau = true;
+      if (stopEarly(step)) return false;
+    }
+  }
+  return true;
+}
+
+/// The active-set residual skips sleepers (each ≤ sleepBelow when it fell asleep, but small
+/// neighbour moves may have loaded it since): converged only when every bubble agrees.
+bool NodePlacer::convergedWithEveryBubbleAwake() {
+  if (allAwake_) return true;
+  ScopedSeconds timer{st_.secondsDynamics};
+  sys_.wakeAll();
+  residual_ = sys_.computeForces(adj_, p_);
+  allAwake_ = true;
+  return residual_ < target_;
+}
+
+/// One defect-annealing pass (defects.hpp): kicks the defects' neighbourhoods, after which the
+/// run goes on (stall mark restarted). False when nothing was kicked (no pass is left then).
+bool NodePlacer::annealDefects(int step) {
+  ScopedSeconds timer{st_.secondsDefects};
+  defects_.started(step);
+  // The lists hold every pair within 1.5 (see keepAdjacency); Voronoi neighbours of a packing
+  // are within ~1.3.
+  const LocalTopology topo = localTopology(sys_.nodes().positions, sys_.metrics(), sys_.nodes().kinds, adj_);
+  const DefectCounts dc = countDefects(topo);
+  if (st_.defectsFirst < 0) st_.defectsFirst = dc.total();
+  st_.defectsLast = dc.total();
+  long moved = 0;
+  if (double(dc.total()) > o_.defectMinShare * double(dc.interior)) {
+    moved = shakeNodes(sys_, geo_, defectNeighbourhood(topo, 1), o_.defectShake, st_.defectPasses);
+    ++st_.defectPasses;
+  }
+  if (moved == 0) {
+    defects_.stop();
+    return false;
+  }
+  relax_.edited(step);
+  adj_ = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+  sys_.clearMoved();
+  sys_.wakeAll();
+  residual_ = sys_.computeForces(adj_, p_);
+  allAwake_ = true;
+  stall_.restart();
+  return true;
+}
+
+/// An early stop (stall, plateau) asked at `step`: now, or after the relaxation since the last
+/// edit, with no population or defect pass in between.
+bool NodePlacer::stopEarly(int step) {
+  if (relax_.allowsStop(step)) return true;
+  population_.settle();
+  defects_.stop();
+  return false;
+}
+
+void NodePlacer::advance() {
+  ScopedSeconds timer{st_.secondsDynamics};
+  sys_.advance(p_);
+  if (!constant_) sys_.updateMetrics(metric_, false, o_.metricLag);
+  const long awake = sys_.updateActivity(adj_, sleepBelow_, o_.timeStep);
+  st_.activeBubbleSteps += awake;
+  allAwake_ = awake == sys_.size() - fixedCount_;
+  ++st_.steps;
+}
+
+/// The lists are exact for forces and eq. (9) (both reach w = 1.5 only) while no bubble has
+/// travelled (radius − 1.5)/2 since the last refresh: keepAdjacency checks that after every
+/// step, so a population pass needs no refresh of its own, only the patch of its edits.
+void NodePlacer::populationPass(int step) {
+  const int done = step + 1;
+  if (population_.passDue(done)) {
+    PopulationChange c;
+    {
+      ScopedSeconds timer{st_.secondsPopulation};
+      c = adjustPopulation(sys_, adj_, geo_, metric_, population_.options());
+    }
+    st_.inserted += c.inserted;
+    st_.deleted += c.deleted;
+    if (c.inserted + c.deleted > 0) {
+      relax_.edited(step);
+      ScopedSeconds timer{st_.secondsAdjacency};
+      adj_ = patchAdjacency(adj_, c.map, c.firstNew, sys_.referencePositions(), sys_.metrics(), o_.adjacencyRadius);
+    }
+    population_.afterPass(c.inserted + c.deleted, sys_.size());
+  }
+  population_.afterStep(done);
+}
+
+/// Refresh every adjacencyRefresh steps (§3.3), or earlier once some bubble has travelled more
+/// than the margin from its reference position: then only the rows of those bubbles (unless
+/// they are many), which get their current positions as new references. Between full
+/// refreshes the lists are the radius-lists of the reference positions (every local update and
+/// the population patch test pairs at reference positions; a full refresh makes them current),
+/// so a pair outside them is now more than radius − 2·margin = 1.5 apart: out of force range,
+/// up to the change of the metrics along the way (a few % of a length per 0.1 of travel under
+/// hgrad 1.3; f(1.45) = −0.06).
+void NodePlacer::keepAdjacency(int done) {
+  const double margin = 0.5 * (o_.adjacencyRadius - 1.5);
+  const bool periodic = done % std::max(1, o_.adjacencyRefresh) == 0;
+  if (!periodic && sys_.maxTravelSinceRefresh() <= margin) return;
+  ScopedSeconds timer{st_.secondsAdjacency};
+  std::vector<int> far;
+  if (!periodic) far = sys_.travellers(margin);
+  if (!periodic && 4 * far.size() < std::size_t(sys_.size())) {
+    sys_.resetTravel(far);
+    refreshAdjacencyAround(adj_, sys_.referencePositions(), sys_.metrics(), o_.adjacencyRadius, far);
+  } else {
+    refreshAdjacencyInPlace(adj_, sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius, sys_.movedSinceRefresh());
+    sys_.clearMoved();
+  }
+}
+
+/// 3. The exact metrics, the final lists (a two-ring refresh when the lists are still close:
+/// every pair within the radius is then in it; a full rebuild otherwise), distinct nodes, the
+/// boundary edges.
+PlacementResult NodePlacer::output() {
+  {
+    ScopedSeconds timer{st_.secondsDynamics};
+    sys_.wakeAll();  // the final residual covers every bubble
+    st_.finalResidual = sys_.computeForces(adj_, p_);
+  }
+  st_.hitStepCap = st_.steps >= o_.maxSteps && st_.finalResidual >= target_;
+  {
+    ScopedSeconds timer{st_.secondsAdjacency};
+    sys_.updateMetrics(metric_);
+    if (sys_.maxTravelSinceRefresh() < 0.5 * (o_.adjacencyRadius - 1.5))
+      result_.adjacency = refreshAdjacency(adj_, sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+    else
+      result_.adjacency = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+    // No two nodes share a point (node_set.hpp): the chains keep their boundary nodes apart by
+    // construction (bubble_system.hpp); bubbles that came to rest on one point are merged here.
+    std::vector<char> drop;
+    st_.coincidentDropped = coincidentNodes(sys_.nodes(), result_.adjacency, drop);
+    if (st_.coincidentDropped > 0) {
+      sys_.remove(drop, true);
+      result_.adjacency = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+    }
+  }
+  result_.boundaryEdges = boundaryEdgesOf(sys_, geo_);
+  result_.metrics = sys_.metrics();
+  result_.nodes = sys_.nodes();
+  st_.finalNodes = result_.nodes.size();
+  st_.nearestInRange = nearestNeighbourShare(result_);
+  return std::move(result_);
+}
+
+void checkOptions(const PlacementOptions& options) {
   ABLMG_REQUIRE(options.timeStep > 0 && options.mass > 0 && options.damping >= 0,
                 "placeNodes: need timeStep > 0, mass > 0, damping >= 0; got "
                     << options.timeStep << ", " << options.mass << ", " << options.damping);
@@ -138,264 +428,14 @@ PlacementResult placeNodes(const Domain& domain, const MetricField& metric, cons
       options.defectPasses >= 0 && options.defectEvery >= 1 && options.defectShake >= 0 && options.defectShake <= 0.5,
       "placeNodes: need defectPasses >= 0, defectEvery >= 1, defectShake in [0, 0.5]; got "
           << options.defectPasses << ", " << options.defectEvery << ", " << options.defectShake);
+}
+
+}  // namespace
+
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
+  checkOptions(options);
   ThreadScope threads(options.threads);
-  PlacementResult result;
-  PlacementStats& st = result.stats;
-
-  // 1. Initial placement (§3.1), after checking the predicted size.
-  auto t = Clock::now();
-  DomainGeometry geo(domain);
-  const int holes = int(domain.loops().size()) - 1;
-  {
-    const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo, metric, 64);
-    ABLMG_REQUIRE(coarse <= double(options.maxNodes), "placeNodes: the metric asks for about "
-                                                          << long(coarse)
-                                                          << " nodes, more than maxNodes = " << options.maxNodes);
-  }
-  const double areaM = metricArea(domain, geo, metric, 256);
-  NodeSet nodes;
-  std::vector<double> arc;
-  placeBoundaryNodes(geo, metric, nodes, arc);
-  st.predictedNodes = predictedNodeCount(areaM, nodes.size(), holes);
-  ABLMG_REQUIRE(st.predictedNodes <= options.maxNodes,
-                "placeNodes: predicted node count " << st.predictedNodes << " exceeds maxNodes = " << options.maxNodes);
-  const double spacing = std::sqrt(domain.area() / std::max<double>(st.predictedNodes, 1.0));
-  const int firstInterior = nodes.size();
-  placeInteriorNodes(geo, metric, nodes, spacing, options.lattice, options.warmStart);
-  zOrder(nodes, firstInterior);
-  arc.resize(nodes.size(), -1.0);
-  BubbleSystem sys(geo, std::move(nodes), std::move(arc));
-  sys.updateMetrics(metric);
-  st.initialNodes = sys.size();
-  st.secondsInitial = since(t);
-
-  t = Clock::now();
-  AdjacencyLists adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
-  sys.clearMoved();
-  st.secondsAdjacency += since(t);
-
-  // 2. Dynamics (§3.2) interleaved with population control (§3.4).
-  const DynamicsParams p{options.k0, options.mass, options.damping, options.timeStep, options.pairDistance};
-  PopulationOptions pop;
-  pop.target = st.predictedNodes;
-  const int popEvery = 10;
-  const int popUntil = std::max(popEvery, int(0.6 * options.maxSteps));
-  int quietPasses = 0;
-  std::vector<int> passCounts;  // node count after each population pass
-  double stallMark = 0;
-  int stallMarkStep = -1;
-  std::vector<double> shares;  // quality-plateau samples, one per 10 steps
-  bool populationSettled = false;
-  bool plateauMayStart = false;  // the last population pass edited ≤ 0.2 % of the nodes
-
-  const bool constant = metric.isConstant();
-  t = Clock::now();
-  double residual = sys.computeForces(adj, p);
-  st.secondsDynamics += since(t);
-  st.initialResidual = residual;
-  // Converged: the residual dropped by relativeTolerance (100× by default) or below tolerance.
-  // A warm start begins near equilibrium, so its own initial residual is no yardstick (×100
-  // below an already small residual is polishing that can stall): it is measured against a
-  // fresh lattice's, which is 0.5–0.7 on the paper disks (kLatticeResidual).
-  constexpr double kLatticeResidual = 0.5;
-  const double reference =
-      options.warmStart.empty() ? st.initialResidual : std::max(st.initialResidual, kLatticeResidual);
-  const double target = std::max(options.tolerance, options.relativeTolerance * reference);
-  const double sleepBelow = 0.5 * target;  // active set: see BubbleSystem::updateActivity
-  bool allAwake = true;                    // the last residual covers every bubble
-  long fixedCount = 0;                     // Vertex bubbles: never awake
-  for (int i = 0; i < sys.size(); ++i) fixedCount += sys.nodes().kinds[i] == NodeKind::Vertex;
-  // Defect annealing (defects.hpp): the first pass once the population has settled, the next
-  // ones every defectEvery steps (or at convergence, if that comes first); a pass kicks the
-  // defects' neighbourhoods and the run goes on (stall marks restarted). Returns false when
-  // nothing was kicked (no pass is left then). Starting at the settled population rather than
-  // at convergence: the same edge statistics for ~25 % fewer steps (ring 273–404 instead of
-  // 433–478).
-  int defectPassesLeft = options.defectPasses;
-  int lastEdit = -1;  // step after which the last population edit or defect kick was made
-  int stopAt = -1;    // ≥ 0: relaxing before an early stop, which comes at this step
-  int lastDefectStep = -1;
-  auto annealDefects = [&](int step) {
-    t = Clock::now();
-    --defectPassesLeft;
-    lastDefectStep = step;
-    // The lists hold every pair within 1.5 (see the refresh rule below); Voronoi neighbours
-    // of a packing are within ~1.3.
-    const LocalTopology topo = localTopology(sys.nodes().positions, sys.metrics(), sys.nodes().kinds, adj);
-    const DefectCounts dc = countDefects(topo);
-    if (st.defectsFirst < 0) st.defectsFirst = dc.total();
-    st.defectsLast = dc.total();
-    long moved = 0;
-    if (double(dc.total()) > options.defectMinShare * double(dc.interior)) {
-      moved = shakeNodes(sys, geo, defectNeighbourhood(topo, 1), options.defectShake, st.defectPasses);
-      ++st.defectPasses;
-    }
-    if (moved > 0) {
-      lastEdit = step;
-      adj = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
-      sys.clearMoved();
-      sys.wakeAll();
-      residual = sys.computeForces(adj, p);
-      allAwake = true;
-      stallMarkStep = -1;
-    } else {
-      defectPassesLeft = 0;
-    }
-    st.secondsDefects += since(t);
-    return moved > 0;
-  };
-  // Early stops (stall, plateau) never cut off right after an edit: the nodes just inserted,
-  // the holes of the ones just deleted and the kicked neighbourhoods get finalRelaxSteps
-  // steps without further edits first (stopAt).
-  auto stopEarly = [&](int step) {
-    if (lastEdit < 0 || step - lastEdit >= options.finalRelaxSteps) return true;
-    stopAt = lastEdit + options.finalRelaxSteps;
-    populationSettled = true;  // no more population passes
-    defectPassesLeft = 0;
-    return false;
-  };
-  for (int step = 0; step < options.maxSteps; ++step) {
-    if (stopAt >= 0 && step >= stopAt) break;
-    if (step > 0) {
-      t = Clock::now();
-      residual = sys.computeForces(adj, p);
-      st.secondsDynamics += since(t);
-    }
-    if (residual < target && populationSettled) {
-      // The active-set residual skips sleepers (each ≤ sleepBelow when it fell asleep, but
-      // small neighbour moves may have loaded it since): stop only when every bubble agrees.
-      bool converged = allAwake;
-      if (!converged) {
-        t = Clock::now();
-        sys.wakeAll();
-        residual = sys.computeForces(adj, p);
-        allAwake = true;
-        st.secondsDynamics += since(t);
-        converged = residual < target;
-      }
-      if (converged && !(defectPassesLeft > 0 && annealDefects(step))) break;
-    } else if (populationSettled && defectPassesLeft > 0 &&
-               (lastDefectStep < 0 || step - lastDefectStep >= options.defectEvery)) {
-      annealDefects(step);
-    }
-    // Stall rule: the residual must halve within stallSteps steps of each mark, else the run
-    // stops (some metrics from solvers have no equilibrium within tolerance: a few bubbles
-    // where M varies by ~100 % per metric unit keep jolting). Population passes go on meanwhile.
-    if (options.stallSteps > 0 && stopAt < 0) {
-      if (stallMarkStep < 0 || residual < 0.5 * stallMark) {
-        stallMark = residual;
-        stallMarkStep = step;
-      } else if (step - stallMarkStep >= options.stallSteps) {
-        st.stalled = true;
-        if (stopEarly(step)) break;
-      }
-    }
-    // Quality plateau (the paper's "less simulation when lower quality is acceptable"): the
-    // share of neighbour pairs within ±10 % of unit length is sampled every 10 steps; once the
-    // population is (nearly) settled, a share that gained < plateauGain over the last
-    // plateauSteps steps, while the residual has not halved either, means more steps would
-    // only polish a stuck packing.
-    if (options.plateauSteps > 0 && step % 10 == 0 && stopAt < 0) {
-      t = Clock::now();
-      shares.push_back(unitPairShare(sys, adj, options.pairDistance));
-      st.secondsDynamics += since(t);
-      const int back = (options.plateauSteps + 9) / 10;  // window in samples
-      if ((populationSettled || plateauMayStart) && int(shares.size()) > back &&
-          shares.back() - shares[shares.size() - 1 - std::size_t(back)] < options.plateauGain &&
-          step - stallMarkStep >= options.plateauSteps) {
-        st.qualityPlateau = true;
-        if (stopEarly(step)) break;
-      }
-    }
-    t = Clock::now();
-    sys.advance(p);
-    if (!constant) sys.updateMetrics(metric, false, options.metricLag);
-    const long awake = sys.updateActivity(adj, sleepBelow, options.timeStep);
-    st.activeBubbleSteps += awake;
-    allAwake = awake == sys.size() - fixedCount;
-    ++st.steps;
-    st.secondsDynamics += since(t);
-
-    const int done = step + 1;
-    // The lists are exact for forces and eq. (9) (both reach w = 1.5 only) while no bubble has
-    // travelled (radius − 1.5)/2 since the last refresh: checked below after every step, so a
-    // population pass needs no refresh of its own.
-    if (!populationSettled && done % popEvery == 0) {
-      t = Clock::now();
-      const PopulationChange c = adjustPopulation(sys, adj, geo, metric, pop);
-      st.inserted += c.inserted;
-      st.deleted += c.deleted;
-      st.secondsPopulation += since(t);
-      if (c.inserted + c.deleted > 0) {
-        lastEdit = step;
-        t = Clock::now();
-        adj = patchAdjacency(adj, c.map, c.firstNew, sys.referencePositions(), sys.metrics(), options.adjacencyRadius);
-        st.secondsAdjacency += since(t);
-      }
-      // Settled after two passes in a row that change at most 1 node in 10⁴ (large graded
-      // runs otherwise keep editing 1–3 nodes per pass, each edit jolting its neighbourhood,
-      // for hundreds of steps).
-      // Steering up ends once the count has not grown over steerWindow passes (population.hpp).
-      passCounts.push_back(sys.size());
-      const std::size_t w = std::size_t(std::max(1, pop.steerWindow));
-      if (passCounts.size() > w && passCounts.back() <= passCounts[passCounts.size() - 1 - w]) pop.steerUp = false;
-      plateauMayStart = double(c.inserted + c.deleted) <= 2e-3 * sys.size();
-      if (double(c.inserted + c.deleted) <= 1e-4 * sys.size()) {
-        if (++quietPasses >= 2) populationSettled = true;
-      } else {
-        quietPasses = 0;
-      }
-    }
-    if (!populationSettled && done >= popUntil) populationSettled = true;
-    // Refresh every k steps (§3.3), or earlier once some bubble has travelled more than the
-    // margin from its reference position: then only the rows of those bubbles (unless they are
-    // many), which get their current positions as new references. Between full refreshes the
-    // lists are the radius-lists of the reference positions (every local update and the
-    // population patch test pairs at reference positions; a full refresh makes them current),
-    // so a pair outside them is now more than radius − 2·margin = 1.5 apart: out of force
-    // range, up to the change of the metrics along the way (a few % of a length per 0.1 of
-    // travel under hgrad 1.3; f(1.45) = −0.06). Refreshing only the bubbles past the margin,
-    // not those past 0.7 of it as before, recomputes 25 % fewer rows on the ring remesh
-    // (2.1·10⁵ in 60 steps). Early in a graded run this fires every step.
-    const double margin = 0.5 * (options.adjacencyRadius - 1.5);
-    const bool periodic = done % std::max(1, options.adjacencyRefresh) == 0;
-    if (periodic || sys.maxTravelSinceRefresh() > margin) {
-      t = Clock::now();
-      std::vector<int> far;
-      if (!periodic) far = sys.travellers(margin);
-      if (!periodic && 4 * far.size() < std::size_t(sys.size())) {
-        sys.resetTravel(far);
-        refreshAdjacencyAround(adj, sys.referencePositions(), sys.metrics(), options.adjacencyRadius, far);
-      } else {
-        refreshAdjacencyInPlace(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius,
-                                sys.movedSinceRefresh());
-        sys.clearMoved();
-      }
-      st.secondsAdjacency += since(t);
-    }
-  }
-  t = Clock::now();
-  sys.wakeAll();  // the final residual covers every bubble
-  st.finalResidual = sys.computeForces(adj, p);
-  st.secondsDynamics += since(t);
-  st.hitStepCap = st.steps >= options.maxSteps && st.finalResidual >= target;
-
-  // 3. Output.
-  t = Clock::now();
-  sys.updateMetrics(metric);
-  // Two-ring refresh when the lists are still close (every pair within the radius is then in
-  // it), a full rebuild otherwise.
-  if (sys.maxTravelSinceRefresh() < 0.5 * (options.adjacencyRadius - 1.5))
-    result.adjacency = refreshAdjacency(adj, sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
-  else
-    result.adjacency = buildAdjacency(sys.nodes().positions, sys.metrics(), options.adjacencyRadius);
-  st.secondsAdjacency += since(t);
-  result.boundaryEdges = boundaryEdgesOf(sys, geo);
-  result.metrics = sys.metrics();
-  result.nodes = sys.nodes();
-  st.finalNodes = result.nodes.size();
-  st.nearestInRange = nearestNeighbourShare(result);
-  return result;
+  return NodePlacer(domain, metric, options).run();
 }
 
 double nearestNeighbourShare(const PlacementResult& r, double lo, double hi) {

@@ -140,8 +140,9 @@ struct PlacementStats {
   bool qualityPlateau = false;  ///< stopped by the quality-plateau rule (PlacementOptions::plateauSteps)
   double nearestInRange = 0;  ///< nearestNeighbourShare(result): interior nodes with a nearest neighbour at 0.85–1.15
   double initialResidual = 0,
-         finalResidual = 0;                  ///< largest net bubble force in metric units (= c × terminal velocity)
-  int defectPasses = 0;                      ///< defect annealing passes done (PlacementOptions::defectPasses)
+         finalResidual = 0;    ///< largest net bubble force in metric units (= c × terminal velocity)
+  long coincidentDropped = 0;  ///< nodes dropped at the output for sitting on another node's point (node_set.hpp)
+  int defectPasses = 0;        ///< defect annealing passes done (PlacementOptions::defectPasses)
   long defectsFirst = -1, defectsLast = -1;  ///< defect nodes (degree ≠ 6) at the first and the last pass; −1 if none
   double secondsInitial = 0, secondsDynamics = 0, secondsAdjacency = 0, secondsPopulation = 0;
   double secondsDefects = 0;  ///< defect annealing (topology, kicks, adjacency rebuilds)

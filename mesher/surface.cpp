@@ -74,6 +74,18 @@ class ExpressionSurface final : public ParametricSurface {
   mu::Parser p_[3];
 };
 
+/// The torus of major radius 1 and minor radius 0.3 (the "torus" and "torus-closed" built-ins).
+Vec3 torusPoint(double u, double v) {
+  const double w = 1 + 0.3 * std::cos(v);
+  return Vec3(w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v));
+}
+std::array<Vec3, 2> torusTangents(double u, double v) {
+  const double w = 1 + 0.3 * std::cos(v);
+  return std::array<Vec3, 2>{
+      Vec3(-w * std::sin(u), w * std::cos(u), 0),
+      Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
+}
+
 }  // namespace
 
 std::array<Vec3, 2> ParametricSurface::derivatives(const Vec2& uv) const {
@@ -112,32 +124,11 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
                                      Vec3(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), -std::sin(v))};
         });
   if (name == "torus")
-    return std::make_unique<FormulaSurface>(
-        builtinSurfaceList()[2], Domain::rectangle(0, 0, 1.5 * kPi, 1.5 * kPi),
-        [](double u, double v) {
-          const double w = 1 + 0.3 * std::cos(v);
-          return Vec3(w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v));
-        },
-        [](double u, double v) {
-          const double w = 1 + 0.3 * std::cos(v);
-          return std::array<Vec3, 2>{
-              Vec3(-w * std::sin(u), w * std::cos(u), 0),
-              Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
-        });
+    return std::make_unique<FormulaSurface>(builtinSurfaceList()[2], Domain::rectangle(0, 0, 1.5 * kPi, 1.5 * kPi),
+                                            torusPoint, torusTangents);
   if (name == "torus-closed")
-    return std::make_unique<FormulaSurface>(
-        builtinSurfaceList()[5], Domain::rectangle(0, 0, 2 * kPi, 2 * kPi),
-        [](double u, double v) {
-          const double w = 1 + 0.3 * std::cos(v);
-          return Vec3(w * std::cos(u), w * std::sin(u), 0.3 * std::sin(v));
-        },
-        [](double u, double v) {
-          const double w = 1 + 0.3 * std::cos(v);
-          return std::array<Vec3, 2>{
-              Vec3(-w * std::sin(u), w * std::cos(u), 0),
-              Vec3(-0.3 * std::sin(v) * std::cos(u), -0.3 * std::sin(v) * std::sin(u), 0.3 * std::cos(v))};
-        },
-        true);
+    return std::make_unique<FormulaSurface>(builtinSurfaceList()[5], Domain::rectangle(0, 0, 2 * kPi, 2 * kPi),
+                                            torusPoint, torusTangents, true);
   if (name == "cylinder")
     return std::make_unique<FormulaSurface>(
         builtinSurfaceList()[3], Domain::rectangle(0, 0, kPi, 2),

@@ -16,6 +16,9 @@ packages=(
   libmuparser-dev      # metric and surface expressions in x,y / u,v (core)
   libcairo2-dev        # PNG pictures of bubbles, meshes, convergence plots (io)
   clang libclang-rt-14-dev libomp-dev  # libFuzzer targets in fuzz/ (scripts/fuzz.sh; clang's OpenMP)
+  python3-dev python3-numpy pybind11-dev python3-pybind11  # the Python module `ablmg` (python/)
+  python3-pytest python3-meshio  # its tests (python/tests: pytest; medit/VTU interchange with meshio)
+  python3-dolfinx mpi-default-bin  # examples/python/dolfinx_adaptive.py: DOLFINx solving on ablmg meshes, serial and MPI
 )
 missing=()
 for p in "${packages[@]}"; do

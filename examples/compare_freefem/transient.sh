@@ -4,7 +4,7 @@
 # solution alone, and against FreeFem++'s usual adaptmesh time loop (transient_loop.idp) at the
 # same average vertex count. One command, from anywhere:
 #
-#   examples/compare_freefem/transient.sh [--problem movingpeak|front|all] [--vertices N]
+#   examples/compare_freefem/transient.sh [--problem movingpeak|front|movingpeak,front|all] [--vertices N]
 #                                         [--out DIR] [--no-docs]
 #
 # Per problem, in OUT/NAME/ (OUT default out/transient under the repository):
@@ -30,7 +30,7 @@ out="$repo/out/transient"
 docs=1
 while [[ $# -gt 0 ]]; do
   case "$1" in
-    --problem) problems=$2; [[ $problems == all ]] && problems="movingpeak front"; shift 2 ;;
+    --problem) problems=${2//,/ }; [[ $problems == all ]] && problems="movingpeak front"; shift 2 ;;
     --vertices) vertices=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --no-docs) docs=0; shift ;;

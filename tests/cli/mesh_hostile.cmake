@@ -59,6 +59,15 @@ if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
   ablmg_hostile_config(corner_push "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"0.1*4^sin(2*pi*x/0.15)\", \"h2\": \"2e-4+0.05*abs(y-0.5)\", \"theta\": \"0\"}}")
   add_test(NAME cli.hostile_boundary_nodes_pushed_into_a_corner COMMAND ablmg mesh ${_hdir}/corner_push.json -o ${_hdir}/corner_push.mesh)
   set_tests_properties(cli.hostile_boundary_nodes_pushed_into_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 300)
+  # Sizes graded to 1e-7 at a corner (the reentrant corner of an L, and a convex one): the
+  # first boundary nodes of each edge lie within 1e-4 of the length of the edge from the corner.
+  # Each must keep its own point (the adaptive L-shape under --p inf reaches 1e-4 there).
+  ablmg_hostile_config(graded_corner "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
+  add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_corner COMMAND ablmg mesh ${_hdir}/graded_corner.json -o ${_hdir}/graded_corner.mesh)
+  set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
+  ablmg_hostile_config(graded_reentrant "{\"domain\": {\"loops\": [[[-1,-1],[0,-1],[0,0],[1,0],[1,1],[-1,1]]]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
+  add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner COMMAND ablmg mesh ${_hdir}/graded_reentrant.json -o ${_hdir}/graded_reentrant.mesh)
+  set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
 endif()
 # Non-finite values in a .sol (NaN, ±Inf, overflow), tensor and scalar: one error line naming file:line.
 if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp AND COMMAND ablmg_cli_failure)

@@ -17,9 +17,7 @@ namespace {
 std::string errorOf(auto&& f) {
   try {
     f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
+  } catch (const InputError& e) { return e.what(); }
   return "";
 }
 
@@ -69,6 +67,12 @@ TEST(ParseInteger, WholeNumbersInRange) {
   EXPECT_EQ(errorOf([&] { parseInteger("-3", "mesh: --seed", 0, big); }),
             "mesh: --seed: expected an integer >= 0, got '-3'");
   EXPECT_NE(errorOf([&] { parseInteger("99999999999999999999", "mesh: --seed", 0, big); }), "");
+}
+
+TEST(ParseOnOff, OnOffAndNothingElse) {
+  for (const char* on : {"on", "true", "1"}) EXPECT_TRUE(parseOnOff(on, "adapt: --vtu")) << on;
+  for (const char* off : {"off", "false", "0"}) EXPECT_FALSE(parseOnOff(off, "adapt: --vtu")) << off;
+  EXPECT_EQ(errorOf([] { parseOnOff("yes", "adapt: --vtu"); }), "adapt: --vtu: expected on or off, got 'yes'");
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+// ablmg.hessian_metric and ablmg.quality.
+#include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/core/error.hpp"
+#include "ablmg/mesher/quality.hpp"
+#include "module.hpp"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace ablmg::python {
+namespace {
+
+const char* kHessianDoc = R"(hessian_metric(points, triangles, u, target_vertices, *, norm='l2', p=2.0,
+               shape_blend=None, hmin=0.0, hmax=inf, max_anisotropy=1e4, hgrad=None,
+               method='lsq') -> (n, 3) float64 [m11, m12, m22]
+
+The metric for the next mesh from a P1 field u (one value per vertex), as the adaptive loop of
+`ablmg adapt` computes it (adapt/adaptive_loop.hpp adaptMetric): recovered Hessians
+(adapt/hessian_recovery.hpp), then the metric optimal for the interpolation error at the
+complexity of `target_vertices` vertices (adapt/metric_from_hessian.hpp), then, if hgrad > 1,
+size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
+
+  points, triangles  a valid mesh (arrays as for remesh; any vertex order, e.g. a solver's)
+  u                  (n,) float64 nodal values, finite
+  target_vertices    N: the complexity aimed at is (sqrt(3)/2) N (about N vertices), >= 10
+  norm               'l2': optimal for the Lp norm of the error (M_p, Loseille-Alauzet);
+                     'h1': for the W^{1,p} seminorm
+  p                  the norm's exponent, >= 1 or inf (the loop's default 2)
+  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the norm's own
+  hmin, hmax         size bounds; hmax = inf means a quarter of the bounding-box diagonal
+  max_anisotropy     largest h1/h2 (>= 1)
+  hgrad              None or <= 0: no gradation (the loop's default); > 1: gradation factor
+  method             'lsq' (quadratic least-squares fit) or 'double' (recovered gradient,
+                     recovered again)
+Returns one metric per vertex of the given mesh, in its vertex order: pass it with the same
+points/triangles to remesh. Raises ValueError for an invalid mesh, a NaN in u, a bad option.
+The GIL is released while computing.)";
+
+const char* kQualityDoc = R"(quality(points, triangles, metric=None, *, e=0.05) -> dict
+
+The statistics of `ablmg stats MESH --sol METRIC --json` ("quality" there; mesher/quality.hpp):
+edge metric lengths l (eq. 3 with the averaged tensor; min, mean, max, share in [1/sqrt2,
+sqrt2] and within 10 %, the deviation histogram |l - 1| in bins of width e, paper Table 1),
+element quality q = 4 sqrt(3) A_M / sum l^2 (1 = unit equilateral), Lee's alpha (eqs. 19-20),
+and validity (Mesh2::validate: valid, first_problem).
+
+  points, triangles  arrays as for remesh (the mesh need not be valid: the report says so)
+  metric             (n, 3) tensors, (n,) sizes, or None for the identity (Euclidean lengths)
+  e                  histogram bin width (> 0))";
+
+}  // namespace
+
+void bindAdapt(py::module_& m) {
+  m.def(
+      "hessian_metric",
+      [](py::handle points, py::handle triangles, py::handle u, double targetVertices, const std::string& norm,
+         double p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy,
+         std::optional<double> hgrad, const std::string& method) {
+        const Mesh2 mesh = toMesh(points, triangles, py::none(), py::none(), true, "hessian_metric");
+        const std::vector<double> values = toValues(u, "u", mesh.numVertices());
+        adapt::AdaptOptions o;
+        o.targetVertices = {targetVertices};
+        o.hessian = adapt::parseHessianMethod(method);
+        o.metric.norm = adapt::parseErrorNorm(norm);
+        o.metric.p = p;
+        o.metric.shapeBlend = shapeBlend;
+        o.metric.hmin = hmin;
+        o.metric.hmax = hmax;
+        o.metric.maxAnisotropy = maxAnisotropy;
+        o.hgrad = hgrad.value_or(0.0);
+        adapt::validate(o);
+        std::vector<Metric2> metric;
+        {
+          py::gil_scoped_release release;
+          metric = adapt::adaptMetric(mesh, values, targetVertices, o).metric;
+        }
+        return ownedArray(std::move(metric));
+      },
+      kHessianDoc, py::arg("points"), py::arg("triangles"), py::arg("u"), py::arg("target_vertices"), py::kw_only(),
+      py::arg("norm") = "l2", py::arg("p") = 2.0, py::arg("shape_blend") = py::none(), py::arg("hmin") = 0.0,
+      py::arg("hmax") = std::numeric_limits<double>::infinity(), py::arg("max_anisotropy") = 1e4,
+      py::arg("hgrad") = py::none(), py::arg("method") = "lsq");
+
+  m.def(
+      "quality",
+      [](py::handle points, py::handle triangles, py::handle metric, double e) {
+        const Mesh2 mesh = toMesh(points, triangles, py::none(), py::none(), false, "quality");
+        const std::vector<Metric2> metrics = metric.is_none() ? std::vector<Metric2>(mesh.vertices.size())
+                                                              : toMetrics(metric, "metric", mesh.numVertices());
+        ABLMG_REQUIRE(std::isfinite(e) && e > 0, "quality: e must be positive, got " << e);
+        mesher::MeshQuality q;
+        {
+          py::gil_scoped_release release;
+          q = mesher::meshQuality(mesh, metrics, e);
+        }
+        return toPython(mesher::toJson(q));
+      },
+      kQualityDoc, py::arg("points"), py::arg("triangles"), py::arg("metric") = py::none(), py::kw_only(),
+      py::arg("e") = 0.05);
+}
+
+}  // namespace ablmg::python

@@ -1,0 +1,295 @@
+// Mirrors the subdomain part of adapt/remesh.hpp (remeshSubdomains): meshes with several
+// triangle refs and interface edges, from our own generator and as FreeFem++ and gmsh write them
+// (tests/data/make_multiregion.sh). Checked: the output is valid, every triangle keeps the ref
+// of the input subdomain it lies in, every input interface edge is covered by a chain of output
+// interface edges, each subdomain's area is kept to round-off on polygons, repeated remeshing of
+// a curved interface does not drift, corners and required entities stay, bad inputs are errors.
+#include "ablmg/adapt/remesh.hpp"
+
+#include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
+#include "ablmg/io/medit.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+
+using namespace ablmg;
+using namespace ablmg::adapt;
+static const std::string kData = ABLMG_TEST_DATA;
+
+namespace {
+
+/// n×n grid of the unit square, two triangles per cell; the ref of a cell from its centre:
+/// 1 left half, 2 bottom right, 3 top right (interfaces x = 0.5 and y = 0.5 for x > 0.5).
+/// Written as medit text without Edges, so the reader derives boundary and interface edges.
+Mesh2 threeRegionSquare(int n) {
+  std::ostringstream os;
+  os << "MeshVersionFormatted 2\nDimension 2\nVertices\n" << (n + 1) * (n + 1) << "\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) os << double(i) / n << " " << double(j) / n << " 0\n";
+  os << "Triangles\n" << 2 * n * n << "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+      const double x = (i + 0.5) / n, y = (j + 0.5) / n;
+      const int ref = x < 0.5 ? 1 : y < 0.5 ? 2 : 3;
+      os << a << " " << b << " " << c << " " << ref << "\n" << a << " " << c << " " << d << " " << ref << "\n";
+    }
+  os << "End\n";
+  return io::parseMesh(os.str(), "three.mesh");
+}
+
+std::map<int, double> areaByRef(const Mesh2& m) {
+  std::map<int, double> a;
+  for (int t = 0; t < m.numTriangles(); ++t) a[m.triangleRefs[std::size_t(t)]] += m.triangleArea(t);
+  return a;
+}
+
+/// The ref of the input triangle containing p (brute force; −1 if none).
+int refAt(const Mesh2& m, const Vec2& p) {
+  for (int t = 0; t < m.numTriangles(); ++t) {
+    const auto& tr = m.triangles[std::size_t(t)];
+    if (orient2d(m.vertices[tr[0]], m.vertices[tr[1]], p) >= 0 &&
+        orient2d(m.vertices[tr[1]], m.vertices[tr[2]], p) >= 0 &&
+        orient2d(m.vertices[tr[2]], m.vertices[tr[0]], p) >= 0)
+      return m.triangleRefs[std::size_t(t)];
+  }
+  return -1;
+}
+
+/// Every input interface edge ab is covered by output interface edges on its line: the
+/// overlaps of those edges with ab add up to |ab| (to round-off), so on a polygonal interface
+/// each input edge lies on a chain of output edges.
+void expectInterfacesCovered(const Mesh2& in, const Mesh2& out) {
+  for (const auto& e : in.interfaceEdges) {
+    const Vec2 a = in.vertices[std::size_t(e.a)], b = in.vertices[std::size_t(e.b)];
+    const double len = (b - a).norm();
+    const auto onLine = [&](const Vec2& p) { return std::abs(cross(b - a, p - a)) <= 1e-12 * len * len; };
+    const auto param = [&](const Vec2& p) { return (p - a).dot(b - a) / (len * len); };
+    double covered = 0;
+    for (const auto& f : out.interfaceEdges) {
+      const Vec2 p = out.vertices[std::size_t(f.a)], q = out.vertices[std::size_t(f.b)];
+      if (!onLine(p) || !onLine(q)) continue;
+      const double lo = std::max(0.0, std::min(param(p), param(q))), hi = std::min(1.0, std::max(param(p), param(q)));
+      if (hi > lo) covered += (hi - lo) * len;
+    }
+    EXPECT_NEAR(covered, len, 1e-12 * len) << "input interface edge (" << e.a << ", " << e.b << ")";
+  }
+}
+
+/// Every output triangle lies in the input subdomain of its ref (tested at its centroid).
+void expectRefsWhereTheyWere(const Mesh2& in, const Mesh2& out) {
+  long wrong = 0;
+  for (int t = 0; t < out.numTriangles(); ++t) {
+    const auto& tr = out.triangles[std::size_t(t)];
+    const Vec2 c = (out.vertices[tr[0]] + out.vertices[tr[1]] + out.vertices[tr[2]]) / 3;
+    const int r = refAt(in, c);
+    if (r >= 0 && r != out.triangleRefs[std::size_t(t)]) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0);
+}
+
+std::vector<Metric2> sizes(const Mesh2& m, double h) {
+  return std::vector<Metric2>(m.vertices.size(), Metric2::isotropic(h));
+}
+
+}  // namespace
+
+TEST(RemeshSubdomains, PolygonalSubdomainsKeepAreasRefsAndInterfaces) {
+  const Mesh2 in = threeRegionSquare(8);
+  ASSERT_TRUE(in.validate(1.0).ok) << in.validate().firstProblem;
+  ASSERT_TRUE(needsSubdomains(in));
+  // graded anisotropic metric: finer near the T junction (0.5, 0.5)
+  std::vector<Metric2> metric;
+  for (const Vec2& p : in.vertices) {
+    const double h = 0.02 + 0.1 * (p - Vec2(0.5, 0.5)).norm();
+    metric.push_back(Metric2::fromSizes(h, 2 * h, 0.3));
+  }
+  RemeshOptions o;
+  const RemeshResult r = remesh(in, metric, o);
+  ASSERT_TRUE(r.mesh.validate(1.0, 1e-12).ok) << r.mesh.validate().firstProblem;
+  EXPECT_GT(r.mesh.numVertices(), 150);
+  const auto a0 = areaByRef(in), a1 = areaByRef(r.mesh);
+  ASSERT_EQ(a1.size(), 3u);
+  for (const auto& [ref, a] : a0) EXPECT_NEAR(a1.at(ref), a, 1e-13) << "subdomain " << ref;
+  expectInterfacesCovered(in, r.mesh);
+  expectRefsWhereTheyWere(in, r.mesh);
+  // the T junction and the interface ends on the boundary are vertices of the output
+  for (const Vec2 p : {Vec2(0.5, 0.5), Vec2(0.5, 0), Vec2(0.5, 1), Vec2(1, 0.5)}) {
+    bool found = false;
+    for (const Vec2& v : r.mesh.vertices) found = found || v == p;
+    EXPECT_TRUE(found) << p.transpose();
+  }
+  // boundary refs are the input's (0: the reader added them) and interfaces carry theirs
+  for (const auto& e : r.mesh.boundaryEdges) EXPECT_EQ(e.ref, 0);
+  EXPECT_EQ(r.metric.size(), r.mesh.vertices.size());
+  // deterministic
+  const RemeshResult again = remesh(in, metric, o);
+  EXPECT_EQ(again.mesh.vertices, r.mesh.vertices);
+  EXPECT_EQ(again.mesh.triangles, r.mesh.triangles);
+}
+
+TEST(RemeshSubdomains, GmshAndFreeFemMultiRegionFiles) {
+  for (const std::string f : {"gmsh_two_regions.mesh", "ff_inclusion.mesh"}) {
+    const io::MeshFile file = io::readMeshFile(kData + "/" + f);
+    const Mesh2& in = file.mesh;
+    ASSERT_TRUE(in.validate().ok) << f << ": " << in.validate().firstProblem;
+    EXPECT_FALSE(in.interfaceEdges.empty()) << f;
+    const RemeshResult r = remesh(in, sizes(in, 0.04));
+    ASSERT_TRUE(r.mesh.validate().ok) << f << ": " << r.mesh.validate().firstProblem;
+    const auto a0 = areaByRef(in), a1 = areaByRef(r.mesh);
+    ASSERT_EQ(a1.size(), a0.size()) << f;
+    expectRefsWhereTheyWere(in, r.mesh);
+    if (f == "gmsh_two_regions.mesh") {  // polygonal: areas to round-off, interfaces covered
+      for (const auto& [ref, a] : a0) EXPECT_NEAR(a1.at(ref), a, 1e-12) << f << " subdomain " << ref;
+      expectInterfacesCovered(in, r.mesh);
+    } else {  // the disk: chords of the circle
+      for (const auto& [ref, a] : a0) EXPECT_NEAR(a1.at(ref), a, 0.01 * a) << f << " subdomain " << ref;
+    }
+    // interface refs kept: gmsh writes the interface's curve entities 7 and 8, FreeFem the label 5
+    std::set<int> refs;
+    for (const auto& e : r.mesh.interfaceEdges) refs.insert(e.ref);
+    EXPECT_EQ(refs, (f == "gmsh_two_regions.mesh" ? std::set<int>{7, 8} : std::set<int>{5})) << f;
+  }
+}
+
+TEST(RemeshSubdomains, RepeatedRemeshingOfACurvedInterfaceDoesNotDrift) {
+  Mesh2 mesh = io::readMesh(kData + "/ff_inclusion.mesh");
+  const auto a0 = areaByRef(mesh);
+  std::map<int, double> first;
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    RemeshResult r = remesh(std::move(mesh), sizes(mesh, 0.05));
+    ASSERT_TRUE(r.mesh.validate().ok) << "cycle " << cycle << ": " << r.mesh.validate().firstProblem;
+    mesh = std::move(r.mesh);
+    const auto a = areaByRef(mesh);
+    if (cycle == 0) first = a;
+    for (const auto& [ref, a0r] : a0) {
+      const double chord = std::abs(first.at(ref) - a0r);  // the first remesh's chord error
+      EXPECT_LE(std::abs(a.at(ref) - first.at(ref)), chord + 1e-12) << "cycle " << cycle << " subdomain " << ref;
+    }
+  }
+}
+
+TEST(RemeshSubdomains, CornersAndRequiredEntitiesStay) {
+  // the unit square (4x4 grid), a corner at (0.5, 0) (a straight boundary point), a required
+  // vertex at (0, 0.25), and the required edge (1, 0.5)-(1, 0.75)
+  Mesh2 in = threeRegionSquare(4);
+  std::fill(in.triangleRefs.begin(), in.triangleRefs.end(), 1);
+  in.interfaceEdges.clear();
+  const auto id = [&](double x, double y) {
+    for (int v = 0; v < in.numVertices(); ++v)
+      if (in.vertices[std::size_t(v)] == Vec2(x, y)) return v;
+    return -1;
+  };
+  in.corners = {id(0.5, 0)};
+  in.requiredVertices = {id(0, 0.25)};
+  in.requiredEdges = {{id(1, 0.5), id(1, 0.75)}};
+  ASSERT_TRUE(in.validate(1.0).ok) << in.validate().firstProblem;
+  const RemeshResult r = remesh(in, sizes(in, 0.03));
+  ASSERT_TRUE(r.mesh.validate(1.0, 1e-12).ok) << r.mesh.validate().firstProblem;
+  ASSERT_EQ(r.mesh.corners.size(), 1u);
+  EXPECT_EQ(r.mesh.vertices[std::size_t(r.mesh.corners[0])], Vec2(0.5, 0));
+  ASSERT_EQ(r.mesh.requiredVertices.size(), 1u);
+  EXPECT_EQ(r.mesh.vertices[std::size_t(r.mesh.requiredVertices[0])], Vec2(0, 0.25));
+  ASSERT_EQ(r.mesh.requiredEdges.size(), 1u);  // still an edge, though 8 times the size asked
+  const auto& e = r.mesh.requiredEdges[0];
+  EXPECT_EQ(r.mesh.vertices[std::size_t(e[0])], Vec2(1, 0.5));
+  EXPECT_EQ(r.mesh.vertices[std::size_t(e[1])], Vec2(1, 0.75));
+  // a required vertex inside the domain is refused, naming it
+  Mesh2 inside = in;
+  inside.requiredVertices = {id(0.5, 0.5)};
+  try {
+    remesh(inside, sizes(inside, 0.03), RemeshOptions{.name = "req.mesh"});
+    FAIL() << "no exception";
+  } catch (const InputError& x) {
+    EXPECT_NE(std::string(x.what()).find("req.mesh: required vertex"), std::string::npos) << x.what();
+  }
+}
+
+TEST(RemeshSubdomains, InterfaceThatSeparatesNothingIsAnError) {
+  Mesh2 in = threeRegionSquare(4);
+  std::fill(in.triangleRefs.begin(), in.triangleRefs.end(), 1);
+  in.interfaceEdges.resize(1);  // one interior edge marked, a dangling line
+  ASSERT_TRUE(in.validate().ok) << in.validate().firstProblem;
+  try {
+    remesh(in, sizes(in, 0.1), RemeshOptions{.name = "line.mesh"});
+    FAIL() << "no exception";
+  } catch (const InputError& x) {
+    EXPECT_NE(std::string(x.what()).find("line.mesh: interface edge"), std::string::npos) << x.what();
+    EXPECT_NE(std::string(x.what()).find("separates nothing"), std::string::npos) << x.what();
+  }
+}
+
+namespace {
+
+/// (−1, 1)² with the slit [0, 1] × {0} (Mitchell's reentrant corner with ω = 2π): a (2m)² grid
+/// whose vertices on the slit (x > 0, y = 0) are doubled, the lower cells using the twins; a
+/// zero-width gap between two boundary edge chains. Refs from the reader (0).
+Mesh2 slitSquare(int m) {
+  const int n = 2 * m, nv = (n + 1) * (n + 1);
+  std::ostringstream os;
+  os << "MeshVersionFormatted 2\nDimension 2\nVertices\n" << nv + m << "\n";
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) os << double(i - m) / m << " " << double(j - m) / m << " 0\n";
+  for (int i = m + 1; i <= n; ++i) os << double(i - m) / m << " 0 0\n";  // twins, ids nv + (i − m)
+  const auto id = [&](int i, int j, bool lower) {
+    return j == m && i > m && lower ? nv + (i - m) : j * (n + 1) + i + 1;
+  };
+  os << "Triangles\n" << 2 * n * n << "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool lower = j < m;
+      const int a = id(i, j, lower), b = id(i + 1, j, lower), c = id(i + 1, j + 1, lower), d = id(i, j + 1, lower);
+      os << a << " " << b << " " << c << " 1\n" << a << " " << c << " " << d << " 1\n";
+    }
+  os << "End\n";
+  return io::parseMesh(os.str(), "slit.mesh");
+}
+
+}  // namespace
+
+TEST(RemeshSubdomains, SlitLipsStayApart) {
+  const Mesh2 in = slitSquare(4);
+  ASSERT_TRUE(in.validate(4.0).ok) << in.validate().firstProblem;
+  ASSERT_TRUE(needsSubdomains(in));
+  std::vector<Metric2> metric;  // finer towards the tip
+  for (const Vec2& p : in.vertices) metric.push_back(Metric2::isotropic(0.02 + 0.1 * p.norm()));
+  const RemeshResult r = remesh(in, metric);
+  ASSERT_TRUE(r.mesh.validate(4.0, 1e-12).ok) << r.mesh.validate().firstProblem;
+  EXPECT_TRUE(r.mesh.interfaceEdges.empty());  // the cut that split the work is not kept
+  // no edge crosses the slit (edges on it are the lips), and the two lips share no vertex but
+  // the tip: the upper lip runs x-decreasing (domain above, on its left), the lower x-increasing
+  long crossing = 0;
+  for (const auto& e : r.mesh.edges()) {
+    const Vec2 a = r.mesh.vertices[e[0]], b = r.mesh.vertices[e[1]];
+    const Vec2 s0(0, 0), s1(1, 0);  // a proper crossing: strictly on both sides, both ways
+    crossing += orient2d(a, b, s0) * orient2d(a, b, s1) < 0 && orient2d(s0, s1, a) * orient2d(s0, s1, b) < 0;
+  }
+  EXPECT_EQ(crossing, 0);
+  std::set<int> upper, lower;
+  long upperEdges = 0;
+  for (const auto& e : r.mesh.boundaryEdges) {
+    const Vec2 a = r.mesh.vertices[std::size_t(e.a)], b = r.mesh.vertices[std::size_t(e.b)];
+    if (a.y() != 0 || b.y() != 0 || a.x() < 0 || b.x() < 0) continue;
+    auto& lip = b.x() < a.x() ? upper : lower;
+    lip.insert(e.a);
+    lip.insert(e.b);
+    upperEdges += b.x() < a.x();
+  }
+  EXPECT_GE(upperEdges, 5);
+  std::vector<int> both;
+  std::set_intersection(upper.begin(), upper.end(), lower.begin(), lower.end(), std::back_inserter(both));
+  ASSERT_EQ(both.size(), 1u);
+  EXPECT_EQ(r.mesh.vertices[std::size_t(both[0])], Vec2(0, 0));
+  // the tip is a vertex
+  bool tip = false;
+  for (const Vec2& v : r.mesh.vertices) tip = tip || v == Vec2(0, 0);
+  EXPECT_TRUE(tip);
+}
