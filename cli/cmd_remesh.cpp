@@ -230,7 +230,7 @@ int runRemesh(const std::vector<std::string>& args) {
       report["seconds"] = {
           {"read", secondsRead + r.secondsClamp},        {"gradation", r.secondsGradation}, {"domain", r.secondsDomain},
           {"backgroundField", r.secondsBackgroundField}, {"meshing", r.secondsMeshing},     {"write", secondsWrite}};
-      report["quality"] = mesher::toJson(mesher::meshQuality(r.mesh, r.metric));
+      report["quality"] = cli::qualityJson(mesher::meshQuality(r.mesh, r.metric));
       io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
     } catch (...) {
       std::remove(out.c_str());  // all or nothing

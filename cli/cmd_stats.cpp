@@ -16,6 +16,7 @@
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/config.hpp"
+#include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/metric_field.hpp"
 #include "ablmg/io/atomic_file.hpp"
@@ -144,7 +145,7 @@ int runStats(const std::vector<std::string>& args) {
     }
     q = mesher::meshQuality(mesh, metrics, a.e);
   }
-  report["quality"] = mesher::toJson(q);
+  report["quality"] = cli::qualityJson(q);
 
   // 3. Print, and write the JSON report if asked.
   if (a.jsonToStdout) {

@@ -22,6 +22,7 @@
 #include "ablmg/cli/parse_number.hpp"
 #include "ablmg/cli/progress_line.hpp"
 #include "ablmg/cli/config.hpp"
+#include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
@@ -269,7 +270,7 @@ int runSurface(const std::vector<std::string>& args) {
       written.push_back(png3dPath);
     }
     if (!jsonPath.empty()) {
-      json j = {{"options", optionsEcho},          {"seconds", seconds},        {"quality", mesher::toJson(q)},
+      json j = {{"options", optionsEcho},          {"seconds", seconds},        {"quality", cli::qualityJson(q)},
                 {"boundary_edges", boundaryEdges}, {"welded_vertices", welded}, {"outputs", written}};
       io::writeFileAtomically(jsonPath, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
       written.push_back(jsonPath);

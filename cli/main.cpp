@@ -1,14 +1,11 @@
 // ablmg: command-line front end. Parses the subcommand, runs it, and turns any ablmg::Error
 // (or other exception) into one line on stderr and exit code 1. Libraries never print.
-// Built twice (cli/CMakeLists.txt): ablmg-full has every command; ablmg, with ABLMG_FULL_PROGRAM
-// defined, has the light ones and hands everything else to ablmg-full (forwardToFullProgram).
 #include "ablmg/cli/command.hpp"
 #include "ablmg/core/error.hpp"
 
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -44,8 +41,8 @@ static void usage(std::ostream& os) {
     os << "  " << c.name << std::string(10 - std::min<size_t>(9, std::strlen(c.name)), ' ') << c.summary << "\n";
 }
 
-/// Threads of this process that are running now (in ablmg-full, OpenBLAS, pulled in by
-/// CHOLMOD, starts its own pool when it is loaded, before main()).
+/// Threads of this process that are running now (OpenBLAS, pulled in by CHOLMOD, starts its
+/// own pool when it is loaded, before main()).
 static int ownRunningThreads() {
   int running = 0;
   std::error_code ec;
@@ -95,31 +92,7 @@ static void avoidBusyWaitingUnderLoad(char** argv) {
   unsetenv("OMP_WAIT_POLICY");
 }
 
-#ifdef ABLMG_FULL_PROGRAM
-/// Runs ABLMG_FULL_PROGRAM, from this program's directory, with the same arguments, when the
-/// command is not one of this program's (or there is none, or it is --help): that program
-/// prints the full usage. Returns only if the command is this program's; exits with 127 and a
-/// message when the other program cannot be run.
-static void forwardToFullProgram(int argc, char** argv) {
-  if (argc >= 2)
-    for (const auto& c : ablmg::cli::commands())
-      if (!std::strcmp(argv[1], c.name)) return;
-  std::error_code ec;
-  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-  const std::string full = (ec ? std::filesystem::path(argv[0]) : self).parent_path() / ABLMG_FULL_PROGRAM;
-  argv[0] = const_cast<char*>(full.c_str());
-  execv(full.c_str(), argv);
-  std::cerr << "ablmg: cannot run " << full << " (" << std::strerror(errno) << ")";
-  if (argc >= 2) std::cerr << ", which has the command '" << argv[1] << "'";
-  std::cerr << "\n";
-  std::exit(127);
-}
-#endif
-
 int main(int argc, char** argv) {
-#ifdef ABLMG_FULL_PROGRAM
-  forwardToFullProgram(argc, argv);
-#endif
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? std::cerr : std::cout);
     return argc < 2 ? 2 : 0;

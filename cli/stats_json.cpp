@@ -59,4 +59,30 @@ nlohmann::json meshStatsJson(const mesher::MeshStats& s) {
           {"secondsValidate", s.secondsValidate}};
 }
 
+nlohmann::json qualityJson(const mesher::MeshQuality& q) {
+  const auto& l = q.edgeLengths;
+  const auto& el = q.elements;
+  return {{"dimension", q.dimension},
+          {"vertices", q.vertices},
+          {"triangles", q.triangles},
+          {"edges", q.edges},
+          {"valid", q.valid},
+          {"first_problem", q.firstProblem},
+          {"edge_length",
+           {{"min", l.min},
+            {"mean", l.mean},
+            {"max", l.max},
+            {"in_sqrt2", l.inSqrt2},
+            {"within_10pct", l.within10},
+            {"deviation", {{"e", l.e}, {"bins", l.deviation}}}}},
+          {"element_quality",
+           {{"measure", q.dimension == 2 ? "q = 4*sqrt(3)*A_M/(l1^2+l2^2+l3^2)" : "Lee alpha, eqs. (19)-(20)"},
+            {"min", el.min},
+            {"mean", el.mean},
+            {"max", el.max},
+            {"bins", el.bins}}},
+          {"lee_alpha",
+           {{"min", q.leeAlpha.min}, {"mean", q.leeAlpha.mean}, {"max", q.leeAlpha.max}, {"bins", q.leeAlpha.bins}}}};
+}
+
 }  // namespace ablmg::cli

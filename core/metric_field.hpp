@@ -6,6 +6,8 @@
 ///  - AnalyticMetricField: muparser expressions in x, y giving either (h1, h2, theta) or
 ///    (m11, m12, m22) (eq. 1 or 2). Expressions are checked when the field is built (unknown
 ///    variables, syntax) and every evaluation is checked for SPD (the error names the point).
+///    Defined in core/analytic_metric_field.cpp, target ablmg_expr (ablmg::expr: links muparser);
+///    the rest of this header is ablmg_core's.
 ///  - BackgroundMetricField: per-vertex tensors on a triangle mesh, interpolated
 ///    log-Euclidean with barycentric weights (interpolating log M keeps the result SPD and
 ///    does not inflate sizes the way linear interpolation of M⁻¹ or M does). Point location:

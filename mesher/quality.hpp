@@ -15,8 +15,6 @@
 #include "ablmg/core/metric2.hpp"
 #include "ablmg/mesher/surface.hpp"
 
-#include <nlohmann/json_fwd.hpp>
-
 #include <array>
 #include <span>
 #include <string>
@@ -76,10 +74,7 @@ MeshQuality meshQuality(const Mesh2& mesh, std::span<const Metric2> metrics, dou
 /// 3D surface: metric lengths sqrt(eᵀ M_avg e) and Lee's α under m3; validity = checkManifold().
 MeshQuality surfaceQuality(const SurfaceMesh& mesh, const Metric3Field& m3, double e = 0.05);
 
-/// {"dimension", "vertices", "triangles", "edges", "valid", "first_problem",
-///  "edge_length": {min, mean, max, in_sqrt2, within_10pct, deviation: {e, bins: [6]}},
-///  "element_quality": {measure, min, mean, max, bins: [5]}, "lee_alpha": {min, mean, max, bins: [5]}}.
-nlohmann::json toJson(const MeshQuality& q);
+/// (The JSON form is cli::qualityJson, cli/stats_json.hpp: this target links no JSON library.)
 /// A short human-readable table (several lines, each ending in '\n').
 std::string toText(const MeshQuality& q);
 

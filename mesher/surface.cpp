@@ -3,7 +3,6 @@
 #include "ablmg/core/error.hpp"
 
 #include <Eigen/Eigenvalues>
-#include <muParser.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,44 +33,6 @@ class FormulaSurface final : public ParametricSurface {
   PointFn r_;
   DerivFn dr_;
   bool periodic_;
-};
-
-class ExpressionSurface final : public ParametricSurface {
- public:
-  ExpressionSurface(const std::string& x, const std::string& y, const std::string& z, Domain domain,
-                    const std::string& source, bool periodic)
-      : domain_(std::move(domain)), text_("x=" + x + ", y=" + y + ", z=" + z), periodic_(periodic) {
-    const std::string* e[3] = {&x, &y, &z};
-    const char* names[3] = {"x", "y", "z"};
-    for (int k = 0; k < 3; ++k) {
-      try {
-        p_[k].DefineVar("u", &u_);
-        p_[k].DefineVar("v", &v_);
-        p_[k].DefineConst("pi", kPi);
-        p_[k].SetExpr(*e[k]);
-        p_[k].Eval();
-      } catch (const mu::Parser::exception_type& err) {
-        throw InputError(source + "." + names[k] + ": bad expression '" + *e[k] + "': " + err.GetMsg());
-      }
-    }
-  }
-  Vec3 point(const Vec2& uv) const override {
-    u_ = uv.x();
-    v_ = uv.y();
-    Vec3 r(p_[0].Eval(), p_[1].Eval(), p_[2].Eval());
-    ABLMG_REQUIRE(r.allFinite(), "surface: r(" << uv.x() << ", " << uv.y() << ") is not finite");
-    return r;
-  }
-  const Domain& parameterDomain() const override { return domain_; }
-  std::string description() const override { return text_; }
-  bool periodic() const override { return periodic_; }
-
- private:
-  Domain domain_;
-  std::string text_;
-  bool periodic_;
-  mutable double u_ = 0, v_ = 0;
-  mu::Parser p_[3];
 };
 
 /// The torus of major radius 1 and minor radius 0.3 (the "torus" and "torus-closed" built-ins).
@@ -146,12 +107,6 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name) {
   throw InputError(
       "surface: unknown built-in '" + name +
       "' (known: paper-fig16, sphere-patch, torus, torus-closed, cylinder, saddle; see `ablmg surface --list`)");
-}
-
-std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y,
-                                                         const std::string& z, double u0, double v0, double u1,
-                                                         double v1, const std::string& source, bool periodic) {
-  return std::make_unique<ExpressionSurface>(x, y, z, Domain::rectangle(u0, v0, u1, v1), source, periodic);
 }
 
 Metric3Field isotropicMetric3(double h) {

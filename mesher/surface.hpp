@@ -43,6 +43,7 @@ std::unique_ptr<ParametricSurface> makeBuiltinSurface(const std::string& name);
 std::vector<std::string> builtinSurfaceList();
 /// x(u,v), y(u,v), z(u,v) as muparser expressions over a rectangle [u0,u1]×[v0,v1];
 /// `periodic`: r maps opposite sides onto each other, weld them (ParametricSurface::periodic).
+/// Defined in mesher/expression_surface.cpp, target ablmg_expr (links muparser).
 std::unique_ptr<ParametricSurface> makeExpressionSurface(const std::string& x, const std::string& y,
                                                          const std::string& z, double u0, double v0, double u1,
                                                          double v1, const std::string& source = "surface",

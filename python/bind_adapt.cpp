@@ -1,5 +1,6 @@
 // ablmg.hessian_metric and ablmg.quality.
 #include "ablmg/adapt/adaptive_loop.hpp"
+#include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/mesher/quality.hpp"
 #include "module.hpp"
@@ -13,8 +14,8 @@
 namespace ablmg::python {
 namespace {
 
-const char* kHessianDoc = R"(hessian_metric(points, triangles, u, target_vertices, *, norm='l2', p=2.0,
-               shape_blend=None, hmin=0.0, hmax=inf, max_anisotropy=1e4, hgrad=None,
+const char* kHessianDoc = R"(hessian_metric(points, triangles, u, target_vertices, *, norm='l2', p=<loop's>,
+               shape_blend=None, hmin=0.0, hmax=inf, max_anisotropy=1e4, hgrad=<loop's>,
                method='lsq') -> (n, 3) float64 [m11, m12, m22]
 
 The metric for the next mesh from a P1 field u (one value per vertex), as the adaptive loop of
@@ -28,11 +29,13 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
   target_vertices    N: the complexity aimed at is (sqrt(3)/2) N (about N vertices), >= 10
   norm               'l2': optimal for the Lp norm of the error (M_p, Loseille-Alauzet);
                      'h1': for the W^{1,p} seminorm
-  p                  the norm's exponent, >= 1 or inf (the loop's default 2)
+  p                  the norm's exponent, >= 1 or inf
+  (every default is AdaptOptions' in adapt/adaptive_loop.hpp, i.e. `ablmg adapt`'s: the call
+  with no options gives the metric of its loop; ablmg.ADAPT_DEFAULTS lists them)
   shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the norm's own
   hmin, hmax         size bounds; hmax = inf means a quarter of the bounding-box diagonal
   max_anisotropy     largest h1/h2 (>= 1)
-  hgrad              None or <= 0: no gradation (the loop's default); > 1: gradation factor
+  hgrad              <= 0: no gradation; > 1: gradation factor
   method             'lsq' (quadratic least-squares fit) or 'double' (recovered gradient,
                      recovered again)
 Returns one metric per vertex of the given mesh, in its vertex order: pass it with the same
@@ -54,11 +57,21 @@ and validity (Mesh2::validate: valid, first_problem).
 }  // namespace
 
 void bindAdapt(py::module_& m) {
+  const adapt::AdaptOptions defaults;
+  py::dict d;
+  d["norm"] = adapt::toString(defaults.metric.norm);
+  d["p"] = defaults.metric.p;
+  d["hmin"] = defaults.metric.hmin;
+  d["hmax"] = defaults.metric.hmax;
+  d["max_anisotropy"] = defaults.metric.maxAnisotropy;
+  d["hgrad"] = defaults.hgrad;
+  d["method"] = adapt::toString(defaults.hessian);
+  m.attr("ADAPT_DEFAULTS") = d;
   m.def(
       "hessian_metric",
       [](py::handle points, py::handle triangles, py::handle u, double targetVertices, const std::string& norm,
          double p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy,
-         std::optional<double> hgrad, const std::string& method) {
+         double hgrad, const std::string& method) {
         const Mesh2 mesh = toMesh(points, triangles, py::none(), py::none(), true, "hessian_metric");
         const std::vector<double> values = toValues(u, "u", mesh.numVertices());
         adapt::AdaptOptions o;
@@ -70,7 +83,7 @@ void bindAdapt(py::module_& m) {
         o.metric.hmin = hmin;
         o.metric.hmax = hmax;
         o.metric.maxAnisotropy = maxAnisotropy;
-        o.hgrad = hgrad.value_or(0.0);
+        o.hgrad = hgrad;
         adapt::validate(o);
         std::vector<Metric2> metric;
         {
@@ -80,9 +93,10 @@ void bindAdapt(py::module_& m) {
         return ownedArray(std::move(metric));
       },
       kHessianDoc, py::arg("points"), py::arg("triangles"), py::arg("u"), py::arg("target_vertices"), py::kw_only(),
-      py::arg("norm") = "l2", py::arg("p") = 2.0, py::arg("shape_blend") = py::none(), py::arg("hmin") = 0.0,
-      py::arg("hmax") = std::numeric_limits<double>::infinity(), py::arg("max_anisotropy") = 1e4,
-      py::arg("hgrad") = py::none(), py::arg("method") = "lsq");
+      py::arg("norm") = adapt::toString(defaults.metric.norm), py::arg("p") = defaults.metric.p,
+      py::arg("shape_blend") = py::none(), py::arg("hmin") = defaults.metric.hmin,
+      py::arg("hmax") = defaults.metric.hmax, py::arg("max_anisotropy") = defaults.metric.maxAnisotropy,
+      py::arg("hgrad") = defaults.hgrad, py::arg("method") = adapt::toString(defaults.hessian));
 
   m.def(
       "quality",
@@ -96,7 +110,7 @@ void bindAdapt(py::module_& m) {
           py::gil_scoped_release release;
           q = mesher::meshQuality(mesh, metrics, e);
         }
-        return toPython(mesher::toJson(q));
+        return toPython(cli::qualityJson(q));
       },
       kQualityDoc, py::arg("points"), py::arg("triangles"), py::arg("metric") = py::none(), py::kw_only(),
       py::arg("e") = 0.05);

@@ -29,3 +29,5 @@ if [[ "${SKIP_1M:-0}" != 1 ]]; then
     --no-errors --out-dir "$out/mpi2_1m" 2>&1 | grep -v '^INFO' | tee "$out/mpi2_1m.log"
 fi
 $py "$repo/scripts/dolfinx_tables.py" "$out" "$repo/docs/benchmarks.md"
+mkdir -p "$repo/docs/figures"
+for p in wavefront lshape; do cp "$out/serial/$p.png" "$repo/docs/figures/dolfinx_$p.png"; done

@@ -18,8 +18,7 @@ The loop is that of `ablmg adapt --problem NAME --target-vertices N0,N1,...`
      (quadrature degree 8, as ablmg's error norms)
   5. u_h is gathered to rank 0 in ablmg's vertex order (mesh.geometry.input_global_indices:
      DOLFINx renumbers vertices and dofs) and ablmg.hessian_metric computes the metric of the
-     next target (the options of `ablmg adapt`: least-squares recovery, L2 norm, p = 2, no
-     gradation); ablmg.remesh(..., domain=D, options=MeshOptions('adapt')) meshes the exact
+     next target with the defaults of `ablmg adapt` (ablmg.ADAPT_DEFAULTS); ablmg.remesh(..., domain=D, options=MeshOptions('adapt')) meshes the exact
      domain as the loop does; back to 2.
 
 --compare also runs `ablmg adapt` with the same schedule and solves with DOLFINx on each of

@@ -1,11 +1,3 @@
-# io/config tests: cli/config.cpp, cli/mesh_output.cpp, cli/problem_config.cpp, cli/parse_number.cpp
-# and cli/progress_line.cpp are not in a library, so test_io compiles them in.
-if(TARGET test_io)
-  target_sources(test_io PRIVATE ${PROJECT_SOURCE_DIR}/cli/config.cpp ${PROJECT_SOURCE_DIR}/cli/mesh_output.cpp
-                                 ${PROJECT_SOURCE_DIR}/cli/problem_config.cpp ${PROJECT_SOURCE_DIR}/cli/parse_number.cpp
-                                 ${PROJECT_SOURCE_DIR}/cli/progress_line.cpp)
-endif()
-
 # `ablmg remesh` / `ablmg mesh` on bad inputs: non-zero exit, one error line naming file:line
 # (or the config key), and no output file left (check_failure.cmake.in).
 set(_data ${CMAKE_CURRENT_SOURCE_DIR}/data)
@@ -17,80 +9,72 @@ function(ablmg_cli_failure name expect)
                    -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_failure.cmake.in)
   set_tests_properties(cli.${name} PROPERTIES LABELS cli)
 endfunction()
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
-  foreach(bad truncated nan bad_index empty garbage)
-    ablmg_cli_failure(remesh_${bad} "${bad}.mesh:[0-9]+: " remesh -in ${_data}/${bad}.mesh -sol ${_data}/square.sol -out ${_out}/remesh_${bad}.mesh)
-  endforeach()
-  ablmg_cli_failure(remesh_nonspd "nonspd.sol:13: tensor of vertex 5 \\(1, 2, 1\\) is not positive definite"
-                    remesh -in ${_data}/square.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_nonspd.mesh)
-  ablmg_cli_failure(remesh_negative_size "negative-size.sol:8: size of vertex 3 is -0.2"
-                    remesh -in ${_data}/square.mesh -met ${_data}/negative-size.sol -out ${_out}/remesh_negative_size.mesh)
-  ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
-                    remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
-  ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
-  # Numbers follow one rule on every command (cli/parse_number.hpp).
-  ablmg_cli_failure(remesh_fractional_verbosity "remesh: -v: expected an integer in \\[-1, 10\\], got '1.5'"
-                    remesh -in ${_data}/square.mesh -v 1.5 -out ${_out}/remesh_fractional_verbosity.mesh)
-  ablmg_cli_failure(remesh_nan_hmin "remesh: -hmin: expected a number, got 'nan'"
-                    remesh -in ${_data}/square.mesh -hmin nan -out ${_out}/remesh_nan_hmin.mesh)
-  add_test(NAME cli.remesh_reports_post_pass
-           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
-  set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
-                       PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves, [0-9]+ collapses\\)")
-  add_test(NAME cli.remesh_report
-           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report.mesh
-                   --report ${_out}/remesh_report.json -v 0)
-  set_tests_properties(cli.remesh_report PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "repaired triangles\\) -> ")
-  add_test(NAME cli.remesh_report_contents
-           COMMAND ${CMAKE_COMMAND} -DREPORT=${_out}/remesh_report.json -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_remesh_report.cmake.in)
-  set_tests_properties(cli.remesh_report_contents PROPERTIES LABELS cli DEPENDS cli.remesh_report)
-  ablmg_cli_failure(remesh_report_is_output "--report must not be the output mesh or .sol"
-                    remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report_is_output.mesh
-                    --report ${_out}/remesh_report_is_output.mesh)
-  ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
-                    remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
-  # The .sol is read on a second thread; the errors still come in the sequential order:
-  # the mesh's parse error, then the .sol's, then the mesh's validity.
-  ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/truncated.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_both_bad.mesh)
-  ablmg_cli_failure(remesh_missing_sol "no_such.sol: cannot open" remesh -in ${_data}/square.mesh -sol ${_data}/no_such.sol -out ${_out}/remesh_missing_sol.mesh)
-  file(WRITE ${_out}/overlap.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
-                                  "Edges\n4\n1 2 1\n2 3 1\n3 4 1\n4 1 1\nTriangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 3 0\nEnd\n")
-  ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh: " remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
-  ablmg_cli_failure(remesh_invalid_mesh_bad_sol "nonspd.sol:13: tensor of vertex 5" remesh -in ${_out}/overlap.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_invalid_mesh_bad_sol.mesh)
-  # Two boundary loops touching at vertex 3 (a valid mesh, but not a domain).
-  file(WRITE ${_out}/bowtie.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n2 1 1\n2 2 1\n"
-                                 "Edges\n6\n1 2 1\n2 3 1\n3 1 1\n3 4 2\n4 5 2\n5 3 2\nTriangles\n2\n1 2 3 0\n3 4 5 0\nEnd\n")
-  file(WRITE ${_out}/bowtie.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 1\n0.1\n0.1\n0.1\n0.1\n0.1\nEnd\n")
-  ablmg_cli_failure(remesh_pinched_boundary "bowtie.mesh: boundary vertex 3 starts two boundary edges \\(non-manifold boundary\\)"
-                    remesh -in ${_out}/bowtie.mesh -sol ${_out}/bowtie.sol -out ${_out}/remesh_pinched_boundary.mesh)
-  # The .sol cannot be written (a directory in its place): the new .mesh is removed again.
-  file(MAKE_DIRECTORY ${_out}/remesh_sol_blocked.sol)
-  ablmg_cli_failure(remesh_sol_blocked "remesh_sol_blocked.sol: cannot rename" remesh -in ${_data}/square.mesh -sol ${_data}/square_scalar.sol -out ${_out}/remesh_sol_blocked.mesh -hmax 0.2)
-endif()
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
-  file(WRITE ${_out}/bad_type.json "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": 0.1}}\n")
-  ablmg_cli_failure(mesh_bad_type "bad_type.json: metric.h1: expected string, got number" mesh ${_out}/bad_type.json -o ${_out}/mesh_bad_type.mesh)
-  file(WRITE ${_out}/bad_poly.json "{\"domain\": {\"poly\": \"${_data}/open_loop.poly\"}, \"metric\": {\"h\": \"0.1\"}}\n")
-  ablmg_cli_failure(mesh_open_loop "open_loop.poly:[0-9]+: boundary is not closed at vertex" mesh ${_out}/bad_poly.json -o ${_out}/mesh_open_loop.mesh)
-endif()
+foreach(bad truncated nan bad_index empty garbage)
+  ablmg_cli_failure(remesh_${bad} "${bad}.mesh:[0-9]+: " remesh -in ${_data}/${bad}.mesh -sol ${_data}/square.sol -out ${_out}/remesh_${bad}.mesh)
+endforeach()
+ablmg_cli_failure(remesh_nonspd "nonspd.sol:13: tensor of vertex 5 \\(1, 2, 1\\) is not positive definite"
+                  remesh -in ${_data}/square.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_nonspd.mesh)
+ablmg_cli_failure(remesh_negative_size "negative-size.sol:8: size of vertex 3 is -0.2"
+                  remesh -in ${_data}/square.mesh -met ${_data}/negative-size.sol -out ${_out}/remesh_negative_size.mesh)
+ablmg_cli_failure(remesh_mismatch "mismatch.sol:4: 3 solution values but the mesh has 5 vertices"
+                  remesh -in ${_data}/square.mesh -sol ${_data}/mismatch.sol -out ${_out}/remesh_mismatch.mesh)
+ablmg_cli_failure(remesh_bad_flag "unknown option '-foo'" remesh -in ${_data}/square.mesh -foo -out ${_out}/remesh_bad_flag.mesh)
+# Numbers follow one rule on every command (cli/parse_number.hpp).
+ablmg_cli_failure(remesh_fractional_verbosity "remesh: -v: expected an integer in \\[-1, 10\\], got '1.5'"
+                  remesh -in ${_data}/square.mesh -v 1.5 -out ${_out}/remesh_fractional_verbosity.mesh)
+ablmg_cli_failure(remesh_nan_hmin "remesh: -hmin: expected a number, got 'nan'"
+                  remesh -in ${_data}/square.mesh -hmin nan -out ${_out}/remesh_nan_hmin.mesh)
+add_test(NAME cli.remesh_reports_post_pass
+         COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_post_pass.mesh -v 2)
+set_tests_properties(cli.remesh_reports_post_pass PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "quality post-pass [0-9.e-]+ \\(q min [0-9.]+ -> [0-9.]+, [0-9]+ swaps, [0-9]+ moves, [0-9]+ collapses\\)")
+add_test(NAME cli.remesh_report
+         COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report.mesh
+                 --report ${_out}/remesh_report.json -v 0)
+set_tests_properties(cli.remesh_report PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "repaired triangles\\) -> ")
+add_test(NAME cli.remesh_report_contents
+         COMMAND ${CMAKE_COMMAND} -DREPORT=${_out}/remesh_report.json -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_remesh_report.cmake.in)
+set_tests_properties(cli.remesh_report_contents PROPERTIES LABELS cli DEPENDS cli.remesh_report)
+ablmg_cli_failure(remesh_report_is_output "--report must not be the output mesh or .sol"
+                  remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report_is_output.mesh
+                  --report ${_out}/remesh_report_is_output.mesh)
+ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
+                  remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
+# The .sol is read on a second thread; the errors still come in the sequential order:
+# the mesh's parse error, then the .sol's, then the mesh's validity.
+ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/truncated.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_both_bad.mesh)
+ablmg_cli_failure(remesh_missing_sol "no_such.sol: cannot open" remesh -in ${_data}/square.mesh -sol ${_data}/no_such.sol -out ${_out}/remesh_missing_sol.mesh)
+file(WRITE ${_out}/overlap.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
+                                "Edges\n4\n1 2 1\n2 3 1\n3 4 1\n4 1 1\nTriangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 3 0\nEnd\n")
+ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh: " remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
+ablmg_cli_failure(remesh_invalid_mesh_bad_sol "nonspd.sol:13: tensor of vertex 5" remesh -in ${_out}/overlap.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_invalid_mesh_bad_sol.mesh)
+# Two boundary loops touching at vertex 3 (a valid mesh, but not a domain).
+file(WRITE ${_out}/bowtie.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n2 1 1\n2 2 1\n"
+                               "Edges\n6\n1 2 1\n2 3 1\n3 1 1\n3 4 2\n4 5 2\n5 3 2\nTriangles\n2\n1 2 3 0\n3 4 5 0\nEnd\n")
+file(WRITE ${_out}/bowtie.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 1\n0.1\n0.1\n0.1\n0.1\n0.1\nEnd\n")
+ablmg_cli_failure(remesh_pinched_boundary "bowtie.mesh: boundary vertex 3 starts two boundary edges \\(non-manifold boundary\\)"
+                  remesh -in ${_out}/bowtie.mesh -sol ${_out}/bowtie.sol -out ${_out}/remesh_pinched_boundary.mesh)
+# The .sol cannot be written (a directory in its place): the new .mesh is removed again.
+file(MAKE_DIRECTORY ${_out}/remesh_sol_blocked.sol)
+ablmg_cli_failure(remesh_sol_blocked "remesh_sol_blocked.sol: cannot rename" remesh -in ${_data}/square.mesh -sol ${_data}/square_scalar.sol -out ${_out}/remesh_sol_blocked.mesh -hmax 0.2)
+file(WRITE ${_out}/bad_type.json "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": 0.1}}\n")
+ablmg_cli_failure(mesh_bad_type "bad_type.json: metric.h1: expected string, got number" mesh ${_out}/bad_type.json -o ${_out}/mesh_bad_type.mesh)
+file(WRITE ${_out}/bad_poly.json "{\"domain\": {\"poly\": \"${_data}/open_loop.poly\"}, \"metric\": {\"h\": \"0.1\"}}\n")
+ablmg_cli_failure(mesh_open_loop "open_loop.poly:[0-9]+: boundary is not closed at vertex" mesh ${_out}/bad_poly.json -o ${_out}/mesh_open_loop.mesh)
 
 # Successful runs (once meshing works end to end): output files exist afterwards.
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp)
-  add_test(NAME cli.remesh_square
-           COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square_scalar.sol -out ${_out}/remesh_square.mesh -hmax 0.2 -hgrad 1.5)
-  set_tests_properties(cli.remesh_square PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "-> .*remesh_square.mesh")
-  # A square with a square hole, refs 1-4 outside and 5 on the hole (two boundary loops).
-  file(WRITE ${_out}/square_hole.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n8\n0 0 0\n3 0 0\n3 3 0\n0 3 0\n1 1 0\n2 1 0\n2 2 0\n1 2 0\n"
-                                      "Edges\n8\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n6 5 5\n7 6 5\n8 7 5\n5 8 5\n"
-                                      "Triangles\n8\n1 2 6 0\n1 6 5 0\n2 3 7 0\n2 7 6 0\n3 4 8 0\n3 8 7 0\n4 1 5 0\n4 5 8 0\nEnd\n")
-  file(WRITE ${_out}/square_hole.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n8\n1 1\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\nEnd\n")
-  add_test(NAME cli.remesh_hole COMMAND ablmg remesh -in ${_out}/square_hole.mesh -out ${_out}/remesh_hole.mesh -v 0)
-  set_tests_properties(cli.remesh_hole PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "-> .*remesh_hole.mesh")
-endif()
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
-  file(WRITE ${_out}/disk.json "{\"domain\": {\"disk\": {\"center\": [0, 0], \"radius\": 1, \"samples\": 256}}, \"metric\": {\"h1\": \"0.3\", \"h2\": \"0.1\", \"theta\": \"atan2(y, x)\"}}\n")
-  add_test(NAME cli.mesh_disk_bubbles COMMAND ablmg mesh ${_out}/disk.json --bubbles-only -o ${_out}/disk_bubbles.png -o ${_out}/disk_bubbles.vtu --seed 2)
-  set_tests_properties(cli.mesh_disk_bubbles PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "vertices, 0 triangles")
-  add_test(NAME cli.mesh_disk COMMAND ablmg mesh ${_out}/disk.json -o ${_out}/disk.mesh -o ${_out}/disk.png --report ${_out}/disk_report.json)
-  set_tests_properties(cli.mesh_disk PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")
-endif()
+add_test(NAME cli.remesh_square
+         COMMAND ablmg remesh -in ${_data}/square.mesh -sol ${_data}/square_scalar.sol -out ${_out}/remesh_square.mesh -hmax 0.2 -hgrad 1.5)
+set_tests_properties(cli.remesh_square PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "-> .*remesh_square.mesh")
+# A square with a square hole, refs 1-4 outside and 5 on the hole (two boundary loops).
+file(WRITE ${_out}/square_hole.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n8\n0 0 0\n3 0 0\n3 3 0\n0 3 0\n1 1 0\n2 1 0\n2 2 0\n1 2 0\n"
+                                    "Edges\n8\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n6 5 5\n7 6 5\n8 7 5\n5 8 5\n"
+                                    "Triangles\n8\n1 2 6 0\n1 6 5 0\n2 3 7 0\n2 7 6 0\n3 4 8 0\n3 8 7 0\n4 1 5 0\n4 5 8 0\nEnd\n")
+file(WRITE ${_out}/square_hole.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n8\n1 1\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\n0.25\nEnd\n")
+add_test(NAME cli.remesh_hole COMMAND ablmg remesh -in ${_out}/square_hole.mesh -out ${_out}/remesh_hole.mesh -v 0)
+set_tests_properties(cli.remesh_hole PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "-> .*remesh_hole.mesh")
+file(WRITE ${_out}/disk.json "{\"domain\": {\"disk\": {\"center\": [0, 0], \"radius\": 1, \"samples\": 256}}, \"metric\": {\"h1\": \"0.3\", \"h2\": \"0.1\", \"theta\": \"atan2(y, x)\"}}\n")
+add_test(NAME cli.mesh_disk_bubbles COMMAND ablmg mesh ${_out}/disk.json --bubbles-only -o ${_out}/disk_bubbles.png -o ${_out}/disk_bubbles.vtu --seed 2)
+set_tests_properties(cli.mesh_disk_bubbles PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "vertices, 0 triangles")
+add_test(NAME cli.mesh_disk COMMAND ablmg mesh ${_out}/disk.json -o ${_out}/disk.mesh -o ${_out}/disk.png --report ${_out}/disk_report.json)
+set_tests_properties(cli.mesh_disk PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")

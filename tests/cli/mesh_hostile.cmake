@@ -6,98 +6,110 @@ file(MAKE_DIRECTORY ${_hdir})
 function(ablmg_hostile_config name json)
   file(WRITE ${_hdir}/${name}.json "${json}\n")
 endfunction()
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp AND COMMAND ablmg_cli_failure)
-  ablmg_hostile_config(tiny "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-6\"}}")
-  ablmg_cli_failure(hostile_tiny_size "asks for about [0-9]+ nodes, more than maxNodes = 50000000" mesh ${_hdir}/tiny.json -o ${_hdir}/tiny.mesh)
-  ablmg_hostile_config(bad_lattice "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": \"diagonal\"}}}")
-  ablmg_cli_failure(config_bad_lattice "bad_lattice.json: options.placement.latticeOrientation: .*expected axes, short or long, got 'diagonal'"
-                    mesh ${_hdir}/bad_lattice.json -o ${_hdir}/bad_lattice.mesh)
-  ablmg_hostile_config(lattice_number "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": 2}}}")
-  ablmg_cli_failure(config_lattice_number "lattice_number.json: options.placement.latticeOrientation: expected string, got number"
-                    mesh ${_hdir}/lattice_number.json -o ${_hdir}/lattice_number.mesh)
-  ablmg_hostile_config(bad_improve "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"improve\": {\"qThreshold\": 1.5}}}")
-  ablmg_cli_failure(config_bad_improve "bad_improve.json: options.improve: improve options: qThreshold must be in \\(0, 1\\], got 1.5"
-                    mesh ${_hdir}/bad_improve.json -o ${_hdir}/bad_improve.mesh)
-  ablmg_cli_failure(hostile_max_nodes "more than maxNodes = 1000" mesh ${_hdir}/tiny.json --max-nodes 1000 -o ${_hdir}/tiny_max_nodes.mesh)
-  ablmg_hostile_config(selfx "{\"domain\": {\"loops\": [[[0,0],[1,1],[1,0],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
-  ablmg_cli_failure(hostile_self_intersecting "selfx.json: domain.loops: .*self-intersecting or touching boundary" mesh ${_hdir}/selfx.json -o ${_hdir}/selfx.mesh)
-  ablmg_hostile_config(touching "{\"domain\": {\"loops\": [[[0,0],[2,0],[2,2],[0,2]], [[1,0],[1.5,0.5],[0.5,0.5]]]}, \"metric\": {\"h\": \"0.1\"}}")
-  ablmg_cli_failure(hostile_touching_hole "touching.json: domain.loops: .*(intersect|touch)" mesh ${_hdir}/touching.json -o ${_hdir}/touching.mesh)
-  ablmg_hostile_config(dup "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,0],[1,1],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
-  ablmg_cli_failure(hostile_duplicate_vertex "dup.json: domain.loops: .*zero length" mesh ${_hdir}/dup.json -o ${_hdir}/dup.mesh)
-  ablmg_hostile_config(nan "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"sqrt(x-0.5)\"}}")
-  ablmg_cli_failure(hostile_nan_metric "nan.json: metric at .*non-finite" mesh ${_hdir}/nan.json -o ${_hdir}/nan.mesh)
-  ablmg_hostile_config(nonspd "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"2\", \"m22\": \"1\"}}")
-  ablmg_cli_failure(hostile_non_spd_metric "nonspd.json: metric.*positive definite" mesh ${_hdir}/nonspd.json -o ${_hdir}/nonspd.mesh)
-  ablmg_hostile_config(infcoord "{\"domain\": {\"rectangle\": [0,0,1e400,1]}, \"metric\": {\"h\": \"0.1\"}}")
-  ablmg_cli_failure(hostile_inf_coordinate "infcoord.json" mesh ${_hdir}/infcoord.json -o ${_hdir}/infcoord.mesh)
-  file(WRITE ${_hdir}/empty.json "")
-  ablmg_cli_failure(hostile_empty_config "empty.json" mesh ${_hdir}/empty.json -o ${_hdir}/empty.mesh)
-  # Corners closer than the metric size: a valid mesh and a note pointing to "smooth".
-  ablmg_hostile_config(crowded "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,1],[0,1]], [[0.5,0.5],[0.52,0.5],[0.52,0.52],[0.5,0.52]]]}, \"metric\": {\"h\": \"0.1\"}}")
-  add_test(NAME cli.mesh_crowded_corners_note COMMAND ablmg mesh ${_hdir}/crowded.json -o ${_hdir}/crowded.mesh)
-  set_tests_properties(cli.mesh_crowded_corners_note PROPERTIES LABELS cli
-                       PASS_REGULAR_EXPRESSION "note: loop 1 has 4 of 4 segments shorter than half the metric size.*\"smooth\": true")
-  # Valid meshes: a size a million times the domain (2 triangles), anisotropy 1e5.
-  ablmg_hostile_config(huge "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e6\"}}")
-  add_test(NAME cli.hostile_huge_size COMMAND ablmg mesh ${_hdir}/huge.json -o ${_hdir}/huge.mesh)
-  set_tests_properties(cli.hostile_huge_size PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles")
-  ablmg_hostile_config(aniso "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"100\", \"h2\": \"1e-3\", \"theta\": \"0.3\"}}")
-  add_test(NAME cli.hostile_anisotropy_1e5 COMMAND ablmg mesh ${_hdir}/aniso.json -o ${_hdir}/aniso.mesh)
-  set_tests_properties(cli.hostile_anisotropy_1e5 PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in" TIMEOUT 300)
-  # Near-singular SPD tensors: det/trace² ≈ 2.5e-9 (sizes 0.007 and 100) and ≈ 2.5e-14 (the
-  # long size far beyond the domain): valid meshes.
-  ablmg_hostile_config(near_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1e4\", \"m12\": \"0.99999999e4\", \"m22\": \"1e4\"}}")
-  add_test(NAME cli.hostile_near_singular_metric COMMAND ablmg mesh ${_hdir}/near_singular.json -o ${_hdir}/near_singular.mesh)
-  set_tests_properties(cli.hostile_near_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
-  ablmg_hostile_config(nearer_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"0.9999999999999\", \"m22\": \"1\"}}")
-  add_test(NAME cli.hostile_nearer_singular_metric COMMAND ablmg mesh ${_hdir}/nearer_singular.json -o ${_hdir}/nearer_singular.mesh)
-  set_tests_properties(cli.hostile_nearer_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles in" TIMEOUT 120)
-  # A metric whose long size jumps 16x every 0.075 along a 2e-4-thin layer pushes two boundary
-  # nodes into the same corner in one step; they must not land on the same point. A valid mesh
-  # (most of it repaired: the metric is far from smooth).
-  ablmg_hostile_config(corner_push "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"0.1*4^sin(2*pi*x/0.15)\", \"h2\": \"2e-4+0.05*abs(y-0.5)\", \"theta\": \"0\"}}")
-  add_test(NAME cli.hostile_boundary_nodes_pushed_into_a_corner COMMAND ablmg mesh ${_hdir}/corner_push.json -o ${_hdir}/corner_push.mesh)
-  set_tests_properties(cli.hostile_boundary_nodes_pushed_into_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 300)
-  # Sizes graded to 1e-7 at a corner (the reentrant corner of an L, and a convex one): the
-  # first boundary nodes of each edge lie within 1e-4 of the length of the edge from the corner.
-  # Each must keep its own point (the adaptive L-shape under --p inf reaches 1e-4 there).
-  ablmg_hostile_config(graded_corner "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
-  add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_corner COMMAND ablmg mesh ${_hdir}/graded_corner.json -o ${_hdir}/graded_corner.mesh)
-  set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
-  ablmg_hostile_config(graded_reentrant "{\"domain\": {\"loops\": [[[-1,-1],[0,-1],[0,0],[1,0],[1,1],[-1,1]]]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
-  add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner COMMAND ablmg mesh ${_hdir}/graded_reentrant.json -o ${_hdir}/graded_reentrant.mesh)
-  set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
-endif()
+ablmg_hostile_config(tiny "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-6\"}}")
+ablmg_cli_failure(hostile_tiny_size "asks for about [0-9]+ nodes, more than maxNodes = 50000000" mesh ${_hdir}/tiny.json -o ${_hdir}/tiny.mesh)
+ablmg_hostile_config(bad_lattice "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": \"diagonal\"}}}")
+ablmg_cli_failure(config_bad_lattice "bad_lattice.json: options.placement.latticeOrientation: .*expected axes, short or long, got 'diagonal'"
+                  mesh ${_hdir}/bad_lattice.json -o ${_hdir}/bad_lattice.mesh)
+ablmg_hostile_config(lattice_number "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": 2}}}")
+ablmg_cli_failure(config_lattice_number "lattice_number.json: options.placement.latticeOrientation: expected string, got number"
+                  mesh ${_hdir}/lattice_number.json -o ${_hdir}/lattice_number.mesh)
+ablmg_hostile_config(bad_improve "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"improve\": {\"qThreshold\": 1.5}}}")
+ablmg_cli_failure(config_bad_improve "bad_improve.json: options.improve: improve options: qThreshold must be in \\(0, 1\\], got 1.5"
+                  mesh ${_hdir}/bad_improve.json -o ${_hdir}/bad_improve.mesh)
+ablmg_cli_failure(hostile_max_nodes "more than maxNodes = 1000" mesh ${_hdir}/tiny.json --max-nodes 1000 -o ${_hdir}/tiny_max_nodes.mesh)
+ablmg_hostile_config(selfx "{\"domain\": {\"loops\": [[[0,0],[1,1],[1,0],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(hostile_self_intersecting "selfx.json: domain.loops: .*self-intersecting or touching boundary" mesh ${_hdir}/selfx.json -o ${_hdir}/selfx.mesh)
+ablmg_hostile_config(touching "{\"domain\": {\"loops\": [[[0,0],[2,0],[2,2],[0,2]], [[1,0],[1.5,0.5],[0.5,0.5]]]}, \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(hostile_touching_hole "touching.json: domain.loops: .*(intersect|touch)" mesh ${_hdir}/touching.json -o ${_hdir}/touching.mesh)
+ablmg_hostile_config(dup "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,0],[1,1],[0,1]]]}, \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(hostile_duplicate_vertex "dup.json: domain.loops: .*zero length" mesh ${_hdir}/dup.json -o ${_hdir}/dup.mesh)
+ablmg_hostile_config(nan "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"sqrt(x-0.5)\"}}")
+ablmg_cli_failure(hostile_nan_metric "nan.json: metric at .*non-finite" mesh ${_hdir}/nan.json -o ${_hdir}/nan.mesh)
+ablmg_hostile_config(nonspd "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"2\", \"m22\": \"1\"}}")
+ablmg_cli_failure(hostile_non_spd_metric "nonspd.json: metric.*positive definite" mesh ${_hdir}/nonspd.json -o ${_hdir}/nonspd.mesh)
+ablmg_hostile_config(infcoord "{\"domain\": {\"rectangle\": [0,0,1e400,1]}, \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(hostile_inf_coordinate "infcoord.json" mesh ${_hdir}/infcoord.json -o ${_hdir}/infcoord.mesh)
+file(WRITE ${_hdir}/empty.json "")
+ablmg_cli_failure(hostile_empty_config "empty.json" mesh ${_hdir}/empty.json -o ${_hdir}/empty.mesh)
+# Corners closer than the metric size: a valid mesh and a note pointing to "smooth".
+ablmg_hostile_config(crowded "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,1],[0,1]], [[0.5,0.5],[0.52,0.5],[0.52,0.52],[0.5,0.52]]]}, \"metric\": {\"h\": \"0.1\"}}")
+add_test(NAME cli.mesh_crowded_corners_note COMMAND ablmg mesh ${_hdir}/crowded.json -o ${_hdir}/crowded.mesh)
+set_tests_properties(cli.mesh_crowded_corners_note PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "note: loop 1 has 4 of 4 segments shorter than half the metric size.*\"smooth\": true")
+# Valid meshes: a size a million times the domain (2 triangles), anisotropy 1e5.
+ablmg_hostile_config(huge "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e6\"}}")
+add_test(NAME cli.hostile_huge_size COMMAND ablmg mesh ${_hdir}/huge.json -o ${_hdir}/huge.mesh)
+set_tests_properties(cli.hostile_huge_size PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles")
+ablmg_hostile_config(aniso "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"100\", \"h2\": \"1e-3\", \"theta\": \"0.3\"}}")
+add_test(NAME cli.hostile_anisotropy_1e5 COMMAND ablmg mesh ${_hdir}/aniso.json -o ${_hdir}/aniso.mesh)
+set_tests_properties(cli.hostile_anisotropy_1e5 PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in" TIMEOUT 300)
+# Near-singular SPD tensors: det/trace² ≈ 2.5e-9 (sizes 0.007 and 100) and ≈ 2.5e-14 (the
+# long size far beyond the domain): valid meshes.
+ablmg_hostile_config(near_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1e4\", \"m12\": \"0.99999999e4\", \"m22\": \"1e4\"}}")
+add_test(NAME cli.hostile_near_singular_metric COMMAND ablmg mesh ${_hdir}/near_singular.json -o ${_hdir}/near_singular.mesh)
+set_tests_properties(cli.hostile_near_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
+ablmg_hostile_config(nearer_singular "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"m11\": \"1\", \"m12\": \"0.9999999999999\", \"m22\": \"1\"}}")
+add_test(NAME cli.hostile_nearer_singular_metric COMMAND ablmg mesh ${_hdir}/nearer_singular.json -o ${_hdir}/nearer_singular.mesh)
+set_tests_properties(cli.hostile_nearer_singular_metric PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "4 vertices, 2 triangles in" TIMEOUT 120)
+# A metric whose long size jumps 16x every 0.075 along a 2e-4-thin layer pushes two boundary
+# nodes into the same corner in one step; they must not land on the same point. A valid mesh
+# (most of it repaired: the metric is far from smooth).
+ablmg_hostile_config(corner_push "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h1\": \"0.1*4^sin(2*pi*x/0.15)\", \"h2\": \"2e-4+0.05*abs(y-0.5)\", \"theta\": \"0\"}}")
+add_test(NAME cli.hostile_boundary_nodes_pushed_into_a_corner COMMAND ablmg mesh ${_hdir}/corner_push.json -o ${_hdir}/corner_push.mesh)
+set_tests_properties(cli.hostile_boundary_nodes_pushed_into_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 300)
+# Sizes graded to 1e-7 at a corner (the reentrant corner of an L, and a convex one): the
+# first boundary nodes of each edge lie within 1e-4 of the length of the edge from the corner.
+# Each must keep its own point (the adaptive L-shape under --p inf reaches 1e-4 there).
+ablmg_hostile_config(graded_corner "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
+add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_corner COMMAND ablmg mesh ${_hdir}/graded_corner.json -o ${_hdir}/graded_corner.mesh)
+set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
+ablmg_hostile_config(graded_reentrant "{\"domain\": {\"loops\": [[[-1,-1],[0,-1],[0,0],[1,0],[1,1],[-1,1]]]}, \"metric\": {\"h\": \"1e-7+0.2*sqrt(x^2+y^2)\"}}")
+add_test(NAME cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner COMMAND ablmg mesh ${_hdir}/graded_reentrant.json -o ${_hdir}/graded_reentrant.mesh)
+set_tests_properties(cli.hostile_sizes_graded_to_1e-7_at_a_reentrant_corner PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "[0-9]+ vertices, [0-9]+ triangles in" TIMEOUT 120)
 # Non-finite values in a .sol (NaN, ±Inf, overflow), tensor and scalar: one error line naming file:line.
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_remesh.cpp AND COMMAND ablmg_cli_failure)
-  foreach(v nan inf -inf 1e400)
-    string(MAKE_C_IDENTIFIER "${v}" _id)
-    file(WRITE ${_hdir}/sol_${_id}.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 3\n${v} 0 1\n1 0 1\n1 0 1\n1 0 1\n1 0 1\nEnd\n")
-    ablmg_cli_failure(hostile_sol_${_id} "sol_${_id}.sol:6: tensor entry is not finite: '${v}'"
-                      remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_${_id}.sol -out ${_hdir}/sol_${_id}.mesh)
-  endforeach()
-  file(WRITE ${_hdir}/sol_size_nan.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 1\n1\n1\nnan\n1\n1\nEnd\n")
-  ablmg_cli_failure(hostile_sol_size_nan "sol_size_nan.sol:8: size value is not finite: 'nan'"
-                    remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_size_nan.sol -out ${_hdir}/sol_size_nan.mesh)
-endif()
+foreach(v nan inf -inf 1e400)
+  string(MAKE_C_IDENTIFIER "${v}" _id)
+  file(WRITE ${_hdir}/sol_${_id}.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 3\n${v} 0 1\n1 0 1\n1 0 1\n1 0 1\n1 0 1\nEnd\n")
+  ablmg_cli_failure(hostile_sol_${_id} "sol_${_id}.sol:6: tensor entry is not finite: '${v}'"
+                    remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_${_id}.sol -out ${_hdir}/sol_${_id}.mesh)
+endforeach()
+file(WRITE ${_hdir}/sol_size_nan.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 1\n1\n1\nnan\n1\n1\nEnd\n")
+ablmg_cli_failure(hostile_sol_size_nan "sol_size_nan.sol:8: size value is not finite: 'nan'"
+                  remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_hdir}/sol_size_nan.sol -out ${_hdir}/sol_size_nan.mesh)
 
 # Determinism: same config, 1 or 2 threads → byte-identical .mesh and .sol.
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
-  ablmg_hostile_config(determinism "{\"domain\": {\"loops\": [[[0,0],[2,0],[2,1],[1,1.5],[0,1]], [[0.5,0.3],[0.8,0.3],[0.7,0.6]]]}, \"metric\": {\"h1\": \"0.05+0.1*x\", \"h2\": \"0.03\", \"theta\": \"y\"}}")
-  add_test(NAME cli.mesh_deterministic_across_threads
-           COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DCONFIG=${_hdir}/determinism.json -DOUT=${_hdir}/determinism
-                   -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_identical.cmake.in)
-  set_tests_properties(cli.mesh_deterministic_across_threads PROPERTIES LABELS cli)
-endif()
+ablmg_hostile_config(determinism "{\"domain\": {\"loops\": [[[0,0],[2,0],[2,1],[1,1.5],[0,1]], [[0.5,0.3],[0.8,0.3],[0.7,0.6]]]}, \"metric\": {\"h1\": \"0.05+0.1*x\", \"h2\": \"0.03\", \"theta\": \"y\"}}")
+add_test(NAME cli.mesh_deterministic_across_threads
+         COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DCONFIG=${_hdir}/determinism.json -DOUT=${_hdir}/determinism
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_identical.cmake.in)
+set_tests_properties(cli.mesh_deterministic_across_threads PROPERTIES LABELS cli)
 
 # A run killed mid-way leaves the previous outputs intact and no temporary file.
-if(EXISTS ${PROJECT_SOURCE_DIR}/cli/cmd_mesh.cpp)
-  ablmg_hostile_config(kill_small "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}}")
-  ablmg_hostile_config(kill_large "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.0007\"}}")
-  add_test(NAME cli.mesh_killed_run_leaves_outputs_intact
-           COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DSMALL=${_hdir}/kill_small.json
-                   -DLARGE=${_hdir}/kill_large.json -DOUT=${_hdir}/killed -DKILL_AFTER=1
-                   -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_killed.cmake.in)
-  set_tests_properties(cli.mesh_killed_run_leaves_outputs_intact PROPERTIES LABELS cli)
-endif()
+ablmg_hostile_config(kill_small "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}}")
+ablmg_hostile_config(kill_large "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.0007\"}}")
+add_test(NAME cli.mesh_killed_run_leaves_outputs_intact
+         COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DSMALL=${_hdir}/kill_small.json
+                 -DLARGE=${_hdir}/kill_large.json -DOUT=${_hdir}/killed -DKILL_AFTER=1
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_killed.cmake.in)
+set_tests_properties(cli.mesh_killed_run_leaves_outputs_intact PROPERTIES LABELS cli)
+# Hostile medit inputs to `ablmg remesh` in the sections read for subdomains and features.
+set(_sq "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n")
+set(_tri "Triangles\n4\n1 2 5 1\n2 3 5 1\n3 4 5 1\n4 1 5 1\n")
+set(_edges "Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n")
+file(WRITE ${_hdir}/req_inside.mesh "${_sq}${_edges}${_tri}RequiredVertices\n1\n5\nEnd\n")
+ablmg_cli_failure(hostile_required_vertex_inside "req_inside.mesh: required vertex 5 lies inside a subdomain"
+                  remesh -in ${_hdir}/req_inside.mesh -hsiz 0.2 -out ${_hdir}/req_inside.o.mesh)
+file(WRITE ${_hdir}/dangling.mesh "${_sq}Edges\n5\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n1 5 9\n${_tri}End\n")
+ablmg_cli_failure(hostile_interface_separates_nothing "dangling.mesh: interface edge \\([0-9], [0-9]\\) has the same subdomain on both sides"
+                  remesh -in ${_hdir}/dangling.mesh -hsiz 0.2 -out ${_hdir}/dangling.o.mesh)
+file(WRITE ${_hdir}/bad_corner.mesh "${_sq}${_edges}${_tri}Corners\n1\n9\nEnd\n")
+ablmg_cli_failure(hostile_corner_out_of_range "bad_corner.mesh:[0-9]+: Corners entry 1: index 9 out of range \\[1, 5\\]"
+                  remesh -in ${_hdir}/bad_corner.mesh -hsiz 0.2 -out ${_hdir}/bad_corner.o.mesh)
+file(WRITE ${_hdir}/bad_ridge.mesh "${_sq}${_edges}${_tri}Ridges\n1\n7\nEnd\n")
+ablmg_cli_failure(hostile_ridge_out_of_range "bad_ridge.mesh:[0-9]+: Ridges names edge 7 but Edges has 4"
+                  remesh -in ${_hdir}/bad_ridge.mesh -hsiz 0.2 -out ${_hdir}/bad_ridge.o.mesh)
+file(WRITE ${_hdir}/lonely_edge.mesh "${_sq}Edges\n1\n1 3 1\nTriangles\n2\n1 2 5 1\n2 3 5 1\nEnd\n")
+ablmg_cli_failure(hostile_edge_in_no_triangle "lonely_edge.mesh: edge \\(1, 3\\) of Edges is a side of no triangle"
+                  remesh -in ${_hdir}/lonely_edge.mesh -hsiz 0.2 -out ${_hdir}/lonely_edge.o.mesh)
+ablmg_cli_failure(hostile_bad_met_field "-met-field" remesh -in ${_hdir}/req_inside.mesh -met-field 0 -out ${_hdir}/x.o.mesh)

@@ -2,6 +2,8 @@
 // q and its bins (Table 2), Lee's α on surfaces, JSON/text reports — on hand-computed values.
 #include "ablmg/mesher/quality.hpp"
 
+#include "ablmg/cli/stats_json.hpp"
+
 #include "ablmg/core/error.hpp"
 
 #include <gtest/gtest.h>
@@ -159,7 +161,7 @@ TEST(Quality, SurfaceUsesLeeAlpha) {
 TEST(Quality, JsonAndTextReports) {
   const Mesh2 m = unitEquilateral();
   const MeshQuality q = meshQuality(m, std::vector<Metric2>(3));
-  const nlohmann::json j = toJson(q);
+  const nlohmann::json j = cli::qualityJson(q);
   EXPECT_EQ(j["triangles"], 1);
   EXPECT_EQ(j["valid"], true);
   EXPECT_EQ(j["edge_length"]["deviation"]["bins"].size(), 6u);
@@ -187,7 +189,7 @@ TEST(Quality, LeeAlphaInThePlaneTakesTheWorstVertexMetric) {
   EXPECT_LT(leeAlphas(m, mixed)[0], elementQualities(m, mixed)[0]);
   const MeshQuality q = meshQuality(m, mixed);
   EXPECT_NEAR(q.leeAlpha.min, expected, 1e-15);
-  EXPECT_EQ(toJson(q)["lee_alpha"]["min"].get<double>(), q.leeAlpha.min);
+  EXPECT_EQ(cli::qualityJson(q)["lee_alpha"]["min"].get<double>(), q.leeAlpha.min);
   EXPECT_NE(toText(q).find("alpha (Lee"), std::string::npos);
   EXPECT_THROW(leeAlphas(m, std::vector<Metric2>(2)), InputError);
 }
