@@ -31,6 +31,7 @@
 /// number of threads (no floating reductions across threads; nothing random is drawn).
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/progress.hpp"
 #include "ablmg/mesher/bubble_force.hpp"
 #include "ablmg/mesher/initial_placement.hpp"
 #include "ablmg/mesher/node_set.hpp"
@@ -156,7 +157,11 @@ struct PlacementResult {
   PlacementStats stats;
 };
 
-PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {});
+/// `progress` (core/progress.hpp), if set, is called every `progressEvery` steps (< 1 counts as
+/// 1) with the step, the residual and its target and the node count; the result does not
+/// depend on it.
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {},
+                           const ProgressCallback& progress = {}, int progressEvery = 10);
 
 /// Issue 3's packing figure: the share of interior nodes whose nearest neighbour in the
 /// adjacency lists is at a metric distance (eq. 3, averaged tensor) in [lo, hi]; a unit
