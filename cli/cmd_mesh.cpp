@@ -129,7 +129,7 @@ int runMesh(const std::vector<std::string>& args) {
   std::vector<Metric2> metric;
   nlohmann::json stats;
   if (cfg.options.placement.bubblesOnly) {
-    auto placed = mesher::placeNodes(cfg.domain, *cfg.metric, cfg.options.placement);
+    auto placed = mesher::placeNodes(cfg.domain, *cfg.metric, cfg.options.placement, cfg.options.progress);
     mesh.vertices = placed.nodes.positions;
     metric = std::move(placed.metrics);
     stats = {{"placement", placementStatsJson(placed.stats)}};

@@ -1,5 +1,6 @@
 #include "ablmg/core/point_locator.hpp"
 
+#include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
@@ -42,6 +43,12 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
   return nb;
 }
 
+}  // namespace
+
+namespace {
+
+constexpr int kLeafTriangles = 8;
+
 /// floor(r) clamped to [0, n − 1], clamped as a double first: a cell ratio beyond int's range
 /// (a point far outside, a mesh of extreme aspect ratio, NaN) is undefined behaviour to
 /// convert. NaN gives 0.
@@ -50,27 +57,93 @@ int clampedCell(double r, int n) { return r >= 0 ? int(std::min(std::floor(r), d
 }  // namespace
 
 PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighboursOf(mesh)) {
+  const int nt = mesh.numTriangles();
+  ABLMG_REQUIRE(nt > 0, "PointLocator: the mesh has no triangle");
   Vec2 lo = mesh.vertices.at(0), hi = lo;
   for (const auto& v : mesh.vertices) {
     lo = lo.cwiseMin(v);
     hi = hi.cwiseMax(v);
   }
   const Vec2 ext = (hi - lo).cwiseMax(1e-300);
-  const double cells = std::max(1.0, mesh.numTriangles() / 2.0);
+  const double cells = std::max(1.0, nt / 2.0);
   const double side = std::sqrt(ext.x() * ext.y() / cells);
   nx_ = clampedCell(ext.x() / side, 4096) + 1;
   ny_ = clampedCell(ext.y() / side, 4096) + 1;
   lo_ = lo;
   cellSize_ = Vec2(ext.x() / nx_, ext.y() / ny_);
-  cellTriangle_.assign(std::size_t(nx_) * ny_, -1);
-  for (int t = 0; t < mesh.numTriangles(); ++t) {
+  // Triangles bucketed by the cell of their centroid (counting sort: ascending ids per cell).
+  centroid_.resize(std::size_t(nt));
+  std::vector<int> cellOf(static_cast<std::size_t>(nt));
+  std::vector<int> start(std::size_t(nx_) * ny_ + 1, 0);
+  for (int t = 0; t < nt; ++t) {
     const auto& tr = mesh.triangles[t];
     const Vec2 c = (mesh.vertices[tr[0]] + mesh.vertices[tr[1]] + mesh.vertices[tr[2]]) / 3.0;
+    centroid_[std::size_t(t)] = c;
     const int i = clampedCell((c.x() - lo_.x()) / cellSize_.x(), nx_);
     const int j = clampedCell((c.y() - lo_.y()) / cellSize_.y(), ny_);
-    int& slot = cellTriangle_[std::size_t(j) * nx_ + i];
-    if (slot < 0) slot = t;
+    cellOf[std::size_t(t)] = j * nx_ + i;
+    ++start[std::size_t(cellOf[std::size_t(t)]) + 1];
   }
+  for (std::size_t c = 0; c + 1 < start.size(); ++c) start[c + 1] += start[c];
+  order_.resize(std::size_t(nt));
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int t = 0; t < nt; ++t) order_[std::size_t(fill[std::size_t(cellOf[std::size_t(t)])]++)] = t;
+  }
+  cellNode_.assign(std::size_t(nx_) * ny_, -1);
+  // A cell of a few triangles starts at its lowest triangle id; a crowded one (graded,
+  // stretched meshes) gets a tree, encoded as −2 − root.
+  for (std::size_t c = 0; c + 1 < start.size(); ++c) {
+    if (start[c + 1] - start[c] > kLeafTriangles)
+      cellNode_[c] = -2 - build(start[c], start[c + 1]);
+    else if (start[c + 1] > start[c])
+      cellNode_[c] = order_[std::size_t(start[c])];
+  }
+}
+
+int PointLocator::build(int lo, int hi) {
+  const int id = int(nodes_.size());
+  nodes_.push_back(Node{0, -1, -1, -1, lo, hi});
+  if (hi - lo <= kLeafTriangles) return id;
+  Vec2 a = centroid_[std::size_t(order_[std::size_t(lo)])], b = a;
+  for (int k = lo; k < hi; ++k) {
+    a = a.cwiseMin(centroid_[std::size_t(order_[std::size_t(k)])]);
+    b = b.cwiseMax(centroid_[std::size_t(order_[std::size_t(k)])]);
+  }
+  const int axis = (b.x() - a.x()) >= (b.y() - a.y()) ? 0 : 1;
+  const int mid = lo + (hi - lo) / 2;
+  const auto less = [&](int s, int t) {
+    const double cs = centroid_[std::size_t(s)][axis], ct = centroid_[std::size_t(t)][axis];
+    return cs < ct || (cs == ct && s < t);
+  };
+  std::nth_element(order_.begin() + lo, order_.begin() + mid, order_.begin() + hi, less);
+  const double split = centroid_[std::size_t(order_[std::size_t(mid)])][axis];
+  const int left = build(lo, mid), right = build(mid, hi);
+  Node& n = nodes_[std::size_t(id)];
+  n.axis = axis;
+  n.split = split;
+  n.left = left;
+  n.right = right;
+  return id;
+}
+
+int PointLocator::nearestInTree(int id, const Vec2& p) const {
+  while (nodes_[std::size_t(id)].axis >= 0) {
+    const Node& n = nodes_[std::size_t(id)];
+    id = p[n.axis] < n.split ? n.left : n.right;
+  }
+  const Node& leaf = nodes_[std::size_t(id)];
+  int best = order_[std::size_t(leaf.lo)];
+  double bestD = (centroid_[std::size_t(best)] - p).squaredNorm();
+  for (int k = leaf.lo + 1; k < leaf.hi; ++k) {
+    const int t = order_[std::size_t(k)];
+    const double d = (centroid_[std::size_t(t)] - p).squaredNorm();
+    if (d < bestD) {
+      bestD = d;
+      best = t;
+    }
+  }
+  return best;
 }
 
 int PointLocator::startTriangle(const Vec2& p) const {
@@ -80,16 +153,20 @@ int PointLocator::startTriangle(const Vec2& p) const {
   // and last rows of a ring whole, the rows between only at i0 ± ring. Only cells of the ring
   // that lie in the grid are visited, so a search costs O(cells), not O(ring³) (a 4096 × 1 grid
   // of a mesh with an extreme aspect ratio took seconds per point).
-  const auto at = [&](int i, int j) { return cellTriangle_[std::size_t(j) * nx_ + i]; };
+  const auto at = [&](int i, int j) { return cellNode_[std::size_t(j) * nx_ + i] != -1 ? 0 : -1; };
+  const auto from = [&](int i, int j) {
+    const int c = cellNode_[std::size_t(j) * nx_ + i];
+    return c >= 0 ? c : nearestInTree(-2 - c, p);
+  };
   for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
     const int iLo = std::max(i0 - ring, 0), iHi = std::min(i0 + ring, nx_ - 1);
     for (int j = std::max(j0 - ring, 0); j <= std::min(j0 + ring, ny_ - 1); ++j) {
       if (j == j0 - ring || j == j0 + ring) {
         for (int i = iLo; i <= iHi; ++i)
-          if (at(i, j) >= 0) return at(i, j);
+          if (at(i, j) >= 0) return from(i, j);
       } else {
-        if (i0 - ring >= 0 && at(i0 - ring, j) >= 0) return at(i0 - ring, j);
-        if (i0 + ring < nx_ && at(i0 + ring, j) >= 0) return at(i0 + ring, j);
+        if (i0 - ring >= 0 && at(i0 - ring, j) >= 0) return from(i0 - ring, j);
+        if (i0 + ring < nx_ && at(i0 + ring, j) >= 0) return from(i0 + ring, j);
       }
     }
   }

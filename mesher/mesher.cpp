@@ -24,7 +24,7 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
     if (options.progress) options.progress({.stage = stage, .nodes = nodes});
   };
   report("placement", -1);
-  PlacementResult placement = placeNodes(domain, metric, options.placement);
+  PlacementResult placement = placeNodes(domain, metric, options.placement, options.progress, options.progressEvery);
   report("connection", long(placement.nodes.positions.size()));
   ConnectResult connected = connect(placement, domain, options.connect);
 

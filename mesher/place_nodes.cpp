@@ -132,7 +132,8 @@ struct ScopedSeconds {
 /// rules are placement_schedule.hpp's; this class only holds the state they act on.
 class NodePlacer {
  public:
-  NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options);
+  NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options,
+             const ProgressCallback& progress, int progressEvery);
   PlacementResult run();
 
  private:
@@ -162,11 +163,14 @@ class NodePlacer {
   RelaxBeforeStop relax_;
   bool constant_;
   double residual_ = 0, target_ = 0, sleepBelow_ = 0;
-  bool allAwake_ = true;  ///< the last residual covers every bubble
-  long fixedCount_ = 0;   ///< Vertex bubbles: never awake
+  bool allAwake_ = true;              ///< the last residual covers every bubble
+  long fixedCount_ = 0;               ///< Vertex bubbles: never awake
+  const ProgressCallback& progress_;  ///< reports every progressEvery_ steps (may be empty)
+  int progressEvery_;
 };
 
-NodePlacer::NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options)
+NodePlacer::NodePlacer(const Domain& domain, const MetricField& metric, const PlacementOptions& options,
+                       const ProgressCallback& progress, int progressEvery)
     : o_(options),
       metric_(metric),
       geo_(domain),
@@ -177,7 +181,9 @@ NodePlacer::NodePlacer(const Domain& domain, const MetricField& metric, const Pl
       stall_(options.stallSteps),
       plateau_(options.plateauSteps, options.plateauGain),
       relax_(options.finalRelaxSteps),
-      constant_(metric.isConstant()) {
+      constant_(metric.isConstant()),
+      progress_(progress),
+      progressEvery_(progressEvery) {
   startDynamics();
 }
 
@@ -237,6 +243,9 @@ PlacementResult NodePlacer::run() {
       ScopedSeconds timer{st_.secondsDynamics};
       residual_ = sys_.computeForces(adj_, p_);
     }
+    if (progress_ && step % progressEvery_ == 0)
+      progress_(
+          {.stage = "placement", .step = step, .residual = residual_, .target = target_, .nodes = long(sys_.size())});
     if (!keepGoing(step)) break;
     advance();
     populationPass(step);
@@ -439,10 +448,11 @@ void validate(const PlacementOptions& o) {
   need(o.threads >= 0, "threads", ">= 0 (0 = OpenMP's default)", o.threads);
 }
 
-PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options) {
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options,
+                           const ProgressCallback& progress, int progressEvery) {
   validate(options);
   ThreadScope threads(options.threads);
-  return NodePlacer(domain, metric, options).run();
+  return NodePlacer(domain, metric, options, progress, std::max(1, progressEvery)).run();
 }
 
 double nearestNeighbourShare(const PlacementResult& r, double lo, double hi) {

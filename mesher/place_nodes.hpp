@@ -31,6 +31,7 @@
 /// reductions across threads; nothing random is drawn).
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"
+#include "ablmg/core/progress.hpp"
 #include "ablmg/mesher/bubble_force.hpp"
 #include "ablmg/mesher/initial_placement.hpp"
 #include "ablmg/mesher/node_set.hpp"
@@ -151,7 +152,11 @@ struct PlacementResult {
 void validate(const PlacementOptions& options);
 
 /// Places the nodes (see above); options are validate()d first.
-PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {});
+/// `progress` (core/progress.hpp), if set, is called every `progressEvery` steps (< 1 counts as
+/// 1) with the step, the residual and its target and the node count; the result does not
+/// depend on it.
+PlacementResult placeNodes(const Domain& domain, const MetricField& metric, const PlacementOptions& options = {},
+                           const ProgressCallback& progress = {}, int progressEvery = 10);
 
 /// The packing figure: the share of interior nodes whose nearest neighbour in the
 /// adjacency lists is at a metric distance (eq. 3, averaged tensor) in [lo, hi]; a unit

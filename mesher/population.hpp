@@ -19,13 +19,10 @@
 ///    threshold is relaxed to steerDeleteAbove = 6.7; at most |N − aim| nodes are edited. The
 ///    eq. (9) thresholds alone leave graded metrics several % short (the ratio is local: a
 ///    lattice stretched uniformly by 3 % still counts α ≈ 5.6 everywhere, and has no point
-///    0.85 from all neighbours of a node), and a short packing is a stretched one: the ring
-///    metric of §4.3 ended 4 % below N* with 85.8 % of its edges within ±10 %; with these
-///    values 2 % below, 87.3 % (issue 9), and `ablmg remesh` of the ring benchmark
-///    (bench_remesh.sh) 88.7 → 90.6 %, the wave-front pair 93.3 → 93.7 %, for ~10 % more
-///    placement time. steerMinGap trades the count against close pairs: 0.6 reached 89.9 % on
-///    the ring but left 5.2 % of its interior nodes with a neighbour closer than 0.85 (issue 3
-///    allows 5 %); 0.65 leaves 2.9 %, 0.7 gains nothing.
+///    0.85 from all neighbours of a node), and a short packing is a stretched one, with fewer
+///    edges near unit length (docs/benchmarks.md, ring metric of §4.3). steerMinGap trades the
+///    node count against close pairs: a smaller gap inserts more nodes but leaves more interior
+///    nodes with a neighbour closer than 0.85.
 ///    The margin: triangles next to lattice defects are not equilateral (q mean ≈ 0.987 on
 ///    the ring), so they cover less metric area than N*'s unit triangles and a real mesh needs
 ///    slightly more nodes.

@@ -161,3 +161,37 @@ TEST(AnalyticMetricField, EvaluatesAndReportsErrors) {
     EXPECT_NE(std::string(e.what()).find("cfg.json: metric at (-1, 0)"), std::string::npos) << e.what();
   }
 }
+
+// A graded, stretched mesh (rows 10⁻⁴ thick near y = 0.5, growing geometrically away from it;
+// 8 columns): its grid cells hold dozens of thin triangles, found through the cells' k-d trees.
+// Every point must land in a triangle that contains it, with and without hints.
+TEST(PointLocator, CrowdedCellsOfAGradedStretchedMesh) {
+  std::vector<double> ys{0.5};
+  for (double h = 1e-4; ys.back() < 1; h *= 1.15) ys.push_back(std::min(1.0, ys.back() + h));
+  const int half = int(ys.size()) - 1;
+  std::vector<double> all;
+  for (int k = half; k > 0; --k) all.push_back(1 - ys[std::size_t(k)]);
+  all.insert(all.end(), ys.begin(), ys.end());
+  Mesh2 m;
+  const int nx = 8, ny = int(all.size()) - 1;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.vertices.push_back(Vec2(double(i) / nx, all[std::size_t(j)]));
+  auto id = [nx](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  const PointLocator loc(m);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> u(0, 1), near(0.499, 0.501);
+  int hint = -1;
+  for (int k = 0; k < 4000; ++k) {
+    const Vec2 p(u(rng), k % 3 ? near(rng) : u(rng));
+    const auto l = loc.locate(p, k % 2 ? hint : -1);
+    hint = l.triangle;
+    ASSERT_TRUE(l.inside) << p.transpose();
+    const auto& t = m.triangles[l.triangle];
+    for (int c = 0; c < 3; ++c) EXPECT_GE(orient2d(m.vertices[t[(c + 1) % 3]], m.vertices[t[(c + 2) % 3]], p), 0.0);
+  }
+}
