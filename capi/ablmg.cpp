@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <new>
@@ -296,9 +297,18 @@ int ablmg_set_sizes(ablmg_t* h, const double* sizes, int n) {
   });
 }
 
+// A C caller may pass any int as an ablmg_option; reading it as the C++ enum would be undefined
+// behaviour outside the enumerators' range, so the value is read as the int it is stored as.
+static int optionCode(const ablmg_option& option) {
+  static_assert(sizeof(ablmg_option) == sizeof(int), "ablmg_option is passed as an int");
+  int code;
+  std::memcpy(&code, &option, sizeof code);
+  return code;
+}
+
 int ablmg_set_double(ablmg_t* h, ablmg_option option, double value) {
   return guarded(h, "ablmg_set_double", [&] {
-    switch (option) {
+    switch (optionCode(option)) {
       case ABLMG_HMIN:
         if (!std::isfinite(value) || value < 0) fail(ABLMG_ERR_ARGUMENT, "hmin = ", value, " must be finite and >= 0");
         h->hmin = value;
@@ -313,7 +323,7 @@ int ablmg_set_double(ablmg_t* h, ablmg_option option, double value) {
         h->hgrad = value;
         break;
       default:
-        fail(ABLMG_ERR_ARGUMENT, "option ", int(option),
+        fail(ABLMG_ERR_ARGUMENT, "option ", optionCode(option),
              " is not a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD)");
     }
   });
@@ -321,7 +331,7 @@ int ablmg_set_double(ablmg_t* h, ablmg_option option, double value) {
 
 int ablmg_set_int(ablmg_t* h, ablmg_option option, long long value) {
   return guarded(h, "ablmg_set_int", [&] {
-    switch (option) {
+    switch (optionCode(option)) {
       case ABLMG_SEED:
         if (value < 0) fail(ABLMG_ERR_ARGUMENT, "seed = ", value, " must be >= 0");
         h->seed = value;
@@ -338,7 +348,7 @@ int ablmg_set_int(ablmg_t* h, ablmg_option option, long long value) {
                                     : ablmg::adapt::RemeshOptions::WarmStart::IfFits;
         break;
       default:
-        fail(ABLMG_ERR_ARGUMENT, "option ", int(option),
+        fail(ABLMG_ERR_ARGUMENT, "option ", optionCode(option),
              " is not an integer option (ABLMG_SEED, ABLMG_THREADS, ABLMG_WARM_START)");
     }
   });
