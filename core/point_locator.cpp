@@ -173,6 +173,29 @@ int PointLocator::startTriangle(const Vec2& p) const {
   return 0;
 }
 
+bool PointLocator::contains(int t, const Vec2& p) const {
+  const auto& tr = mesh_.triangles[t];
+  for (int k = 0; k < 3; ++k)
+    if (orient2d(mesh_.vertices[tr[(k + 1) % 3]], mesh_.vertices[tr[(k + 2) % 3]], p) < 0) return false;
+  return true;
+}
+
+int PointLocator::nearbyContaining(int t, const Vec2& p) const {
+  // Breadth-first over triangle neighbours from where the walk stopped, at most kNearby
+  // triangles: a straight walk from a start triangle across a hole or past a re-entrant corner
+  // stops at the boundary although p lies on the boundary (or inside) a few triangles away.
+  constexpr std::size_t kNearby = 256;
+  std::vector<int> queue{t};
+  for (std::size_t i = 0; i < queue.size() && queue.size() < kNearby; ++i) {
+    for (int n : neighbours_[queue[i]]) {
+      if (n < 0 || std::find(queue.begin(), queue.end(), n) != queue.end()) continue;
+      if (contains(n, p)) return n;
+      queue.push_back(n);
+    }
+  }
+  return t;
+}
+
 PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
   const bool fromHint = hint >= 0 && hint < mesh_.numTriangles();
   int t = fromHint ? hint : startTriangle(p);
@@ -228,6 +251,7 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
     came = t;
     t = neighbours_[t][exit];
   }
+  if (!contains(t, p)) t = nearbyContaining(t, p);
   Location loc;
   loc.triangle = t;
   const auto& tr = mesh_.triangles[t];

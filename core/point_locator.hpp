@@ -12,7 +12,9 @@
 /// without a hint); a uniform mesh's cells hold a triangle or two and cost as before. A visibility walk with exact orientation tests then moves
 /// to the containing triangle. Passing the previous answer as `hint`
 /// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query.
-/// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid.
+/// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid;
+/// a walk that still stops at the boundary searches the 256 triangles nearest (by adjacency)
+/// to where it stopped for one containing p (p on a hole's side, reached across the hole).
 /// Points outside the mesh get the triangle of the boundary edge where the walk stopped and
 /// barycentric coordinates clamped to it (nearest-point extrapolation), with inside = false.
 /// The mesh must outlive the locator and must be valid (Mesh2::validate).
@@ -36,6 +38,8 @@ class PointLocator {
 
  private:
   int startTriangle(const Vec2& p) const;
+  bool contains(int t, const Vec2& p) const;         ///< exact: p inside or on triangle t
+  int nearbyContaining(int t, const Vec2& p) const;  ///< a triangle near t containing p, else t
   int build(int lo, int hi);                         ///< k-d tree of order_[lo, hi); returns its root
   int nearestInTree(int root, const Vec2& p) const;  ///< the start triangle from one cell's tree
   const Mesh2& mesh_;
