@@ -130,6 +130,7 @@ struct CycleReport {
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
   double tAssembly = 0, tOrdering = 0, tFactor = 0;  ///< the parts of tSolve
   double tErrors = 0;                                ///< computeErrors (0 without an exact solution)
+  mesher::MeshStats meshStats;                       ///< the mesher's statistics and stage times for mesh_k
   long predictedVertices = 0;                        ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
 };

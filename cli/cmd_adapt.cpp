@@ -297,7 +297,8 @@ Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessia
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
 length gains less than G in 10 steps (default 0.01, as ablmg remesh; 0 = run to the residual
 or stall rule: ~1/3 more remesh time, errors a few % lower; adapt/adaptive_loop.hpp).
--v N: 0 = no progress line on stderr (shown on a terminal only; default 1).
+-v N: 0 = no progress line on stderr (shown on a terminal only; default 1); >= 2 also the mesher's stage
+times for each cycle's mesh.
 --print-options: print the options in effect (JSON: the loop's and the mesher's, the "adapt"
 preset with the flags above applied) and exit; the problem and the schedule may be omitted.
 )";
@@ -347,6 +348,23 @@ int runAdapt(const std::vector<std::string>& argv) {
         " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
         "metric %.2fs mesh %.2fs\n",
         r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
+    if (a.verbosity >= 2) {
+      const auto& p = r.meshStats.placement;
+      std::printf(
+          "  mesh %d: placement %.2fs (initial %.2f, dynamics %.2f in %d steps%s, adjacency %.2f, population "
+          "%.2f: +%ld -%ld), connection %.2fs, quality post-pass %.2fs (q min %.3f -> %.3f, %ld swaps, %ld "
+          "moves, %ld collapses), validation %.2fs\n",
+          r.cycle, p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation, p.secondsInitial,
+          p.secondsDynamics, p.steps,
+          p.qualityPlateau ? " (quality plateau)"
+          : p.stalled      ? " (stalled)"
+          : p.hitStepCap   ? " (step cap)"
+                           : "",
+          p.secondsAdjacency, p.secondsPopulation, p.inserted, p.deleted,
+          r.meshStats.connect.secondsLocalMeshes + r.meshStats.connect.secondsRepair, r.meshStats.improve.seconds,
+          r.meshStats.improve.qMinBefore, r.meshStats.improve.qMinAfter, long(r.meshStats.improve.swaps),
+          long(r.meshStats.improve.moves), long(r.meshStats.improve.collapses), r.meshStats.secondsValidate);
+    }
     std::fflush(stdout);
     if (a.vtu) {
       const int n = c.mesh.numVertices();
