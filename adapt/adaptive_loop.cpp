@@ -132,6 +132,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.triangles = current.mesh.numTriangles();
     row.tMesh = tMesh;
     row.predictedVertices = current.stats.placement.predictedNodes;
+    row.meshStats = current.stats;
     const auto q = metricQuality(current.mesh, current.metric);
     row.qMean = q.mean;
     row.qMin = q.min;
@@ -140,9 +141,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = watch.seconds();
+    row.tAssembly = sol.stats.assemblySeconds;
+    row.tOrdering = sol.stats.orderingSeconds;
+    row.tFactor = sol.stats.solveSeconds - sol.stats.orderingSeconds;
+    watch.restart();
     const fem::ErrorReport err = problem.exact
                                      ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
                                      : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
+    row.tErrors = problem.exact ? watch.seconds() : 0.0;
     row.l2 = err.l2;
     row.h1 = err.h1;
     row.l2Interp = err.l2Interp;

@@ -184,7 +184,7 @@ int PointLocator::nearbyContaining(int t, const Vec2& p) const {
   // Breadth-first over triangle neighbours from where the walk stopped, at most kNearby
   // triangles: a straight walk from a start triangle across a hole or past a re-entrant corner
   // stops at the boundary although p lies on the boundary (or inside) a few triangles away.
-  constexpr std::size_t kNearby = 256;
+  constexpr std::size_t kNearby = 64;
   std::vector<int> queue{t};
   for (std::size_t i = 0; i < queue.size() && queue.size() < kNearby; ++i) {
     for (int n : neighbours_[queue[i]]) {

@@ -13,7 +13,7 @@
 /// to the containing triangle. Passing the previous answer as `hint`
 /// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query.
 /// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid;
-/// a walk that still stops at the boundary searches the 256 triangles nearest (by adjacency)
+/// a walk that still stops at the boundary searches the 64 triangles nearest (by adjacency)
 /// to where it stopped for one containing p (p on a hole's side, reached across the hole).
 /// Points outside the mesh get the triangle of the boundary edge where the walk stopped and
 /// barycentric coordinates clamped to it (nearest-point extrapolation), with inside = false.

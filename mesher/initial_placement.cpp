@@ -209,6 +209,7 @@ double DomainGeometry::indexArc(int l, double s) const {
 }
 
 namespace {
+<<<<<<< HEAD
 /// The table of placeBoundaryNodes: points `sub` along the closed polyline (its first point
 /// repeated at the end), their Euclidean arcs `subS` and metric arcs `sM`. Each polyline segment
 /// is first sampled at ≥ 4 points per metric unit measured from its end metrics and at
@@ -276,6 +277,37 @@ void boundaryMetricTable(const LoopPolyline& poly, const MetricField& metric, st
   sM.assign(sub.size(), 0.0);
   for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
 }
+=======
+
+/// Appends the samples of the piece [a, b) of a boundary edge (arc sa → sb, metrics ma, mb) to
+/// `sub`/`subS`, halving it while it is longer than a quarter in the metric or its metric
+/// length from the ends' metrics and from the halves' differ by more than 5 %: the end metrics
+/// of a long edge can miss a layer that crosses it (a unit-square side crossed by a layer of
+/// width 10⁻² got a tenth of the layer's boundary nodes, and the interior bubbles met the
+/// boundary in slivers). At most kMaxHalvings halvings of a piece. `hint`: the last point
+/// location (MetricField::evaluate with hints), carried along the boundary: under a stretched
+/// background mesh a location from scratch walks across many thin triangles.
+void sampleBoundaryPiece(const MetricField& metric, const Vec2& a, const Metric2& ma, double sa, const Vec2& b,
+                         const Metric2& mb, double sb, int depth, int& hint, std::vector<Vec2>& sub,
+                         std::vector<double>& subS) {
+  constexpr int kMaxHalvings = 30;
+  if (depth < kMaxHalvings) {
+    const Vec2 c = 0.5 * (a + b);
+    Metric2 mc;
+    metric.evaluate(std::span<const Vec2>(&c, 1), std::span<Metric2>(&mc, 1), std::span<int>(&hint, 1));
+    const double whole = edgeLength(a, ma, b, mb), halves = edgeLength(a, ma, c, mc) + edgeLength(c, mc, b, mb);
+    if (halves > 0.25 || std::abs(halves - whole) > 0.05 * halves) {
+      const double sc = 0.5 * (sa + sb);
+      sampleBoundaryPiece(metric, a, ma, sa, c, mc, sc, depth + 1, hint, sub, subS);
+      sampleBoundaryPiece(metric, c, mc, sc, b, mb, sb, depth + 1, hint, sub, subS);
+      return;
+    }
+  }
+  sub.push_back(a);
+  subS.push_back(sa);
+}
+
+>>>>>>> main
 }  // namespace
 
 void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
@@ -285,8 +317,24 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     const int n = int(poly.points.size());
     // Fine table (Euclidean arc, metric arc) along the closed loop.
     std::vector<Vec2> sub;
+<<<<<<< HEAD
     std::vector<double> subS, sM;
     boundaryMetricTable(poly, metric, sub, subS, sM);
+=======
+    std::vector<double> subS;
+    int hint = -1;
+    for (int k = 0; k < n; ++k) {
+      const Vec2& a = poly.points[k];
+      const Vec2& b = poly.points[(k + 1) % n];
+      sampleBoundaryPiece(metric, a, pm[k], poly.cum[k], b, pm[(k + 1) % n], poly.cum[k + 1], 0, hint, sub, subS);
+    }
+    sub.push_back(poly.points[0]);
+    subS.push_back(poly.length);
+    std::vector<Metric2> sm(sub.size());
+    metric.evaluate(sub, sm);
+    std::vector<double> sM(sub.size(), 0.0);
+    for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
+>>>>>>> main
     const double LM = sM.back();
     auto metricAt = [&](double s) {  // Euclidean arc (in [0, L]) → metric arc
       const std::size_t i =
