@@ -209,75 +209,6 @@ double DomainGeometry::indexArc(int l, double s) const {
 }
 
 namespace {
-<<<<<<< HEAD
-/// The table of placeBoundaryNodes: points `sub` along the closed polyline (its first point
-/// repeated at the end), their Euclidean arcs `subS` and metric arcs `sM`. Each polyline segment
-/// is first sampled at ≥ 4 points per metric unit measured from its end metrics and at
-/// ≥ kBoundarySamples points per loop length (so that a feature narrower than the segment, a
-/// layer crossing a side of a square, is seen), then every interval longer than 1/4 metric
-/// unit is halved until none is (or its length reaches the coordinates' resolution): the
-/// metric arc is then the metric's own to a few percent, not that of the end metrics.
-void boundaryMetricTable(const LoopPolyline& poly, const MetricField& metric, std::vector<Vec2>& sub,
-                         std::vector<double>& subS, std::vector<double>& sM) {
-  constexpr int kBoundarySamples = 4096;
-  const int n = int(poly.points.size());
-  std::vector<Metric2> pm(n);
-  metric.evaluate(poly.points, pm);
-  sub.clear();
-  subS.clear();
-  for (int k = 0; k < n; ++k) {
-    const Vec2& a = poly.points[k];
-    const Vec2& b = poly.points[(k + 1) % n];
-    const double est = edgeLength(a, pm[k], b, pm[(k + 1) % n]);
-    const double share = (poly.cum[k + 1] - poly.cum[k]) / std::max(poly.length, 1e-300);
-    const int m = std::clamp(int(std::ceil(std::max(4 * est, kBoundarySamples * share))), 1, 1 << 16);
-    for (int i = 0; i < m; ++i) {
-      sub.push_back(a + (double(i) / m) * (b - a));
-      subS.push_back(poly.cum[k] + (double(i) / m) * (poly.cum[k + 1] - poly.cum[k]));
-    }
-  }
-  sub.push_back(poly.points[0]);
-  subS.push_back(poly.length);
-  std::vector<Metric2> sm(sub.size());
-  metric.evaluate(sub, sm);
-  // Halving passes: consecutive samples lie on one straight segment, so a midpoint is on it too.
-  const double minStep = 1e-12 * std::max(poly.length, 1e-300);
-  for (int pass = 0; pass < 40 && sub.size() < (std::size_t(1) << 22); ++pass) {
-    std::vector<std::size_t> split;
-    for (std::size_t i = 1; i < sub.size(); ++i)
-      if (subS[i] - subS[i - 1] > minStep && edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]) > 0.25)
-        split.push_back(i);
-    if (split.empty()) break;
-    std::vector<Vec2> mid(split.size());
-    for (std::size_t j = 0; j < split.size(); ++j) mid[j] = 0.5 * (sub[split[j] - 1] + sub[split[j]]);
-    std::vector<Metric2> mm(mid.size());
-    metric.evaluate(mid, mm);
-    std::vector<Vec2> sub2;
-    std::vector<double> subS2;
-    std::vector<Metric2> sm2;
-    sub2.reserve(sub.size() + mid.size());
-    subS2.reserve(sub.size() + mid.size());
-    sm2.reserve(sub.size() + mid.size());
-    std::size_t j = 0;
-    for (std::size_t i = 0; i < sub.size(); ++i) {
-      if (j < split.size() && split[j] == i) {
-        sub2.push_back(mid[j]);
-        subS2.push_back(0.5 * (subS[i - 1] + subS[i]));
-        sm2.push_back(mm[j]);
-        ++j;
-      }
-      sub2.push_back(sub[i]);
-      subS2.push_back(subS[i]);
-      sm2.push_back(sm[i]);
-    }
-    sub.swap(sub2);
-    subS.swap(subS2);
-    sm.swap(sm2);
-  }
-  sM.assign(sub.size(), 0.0);
-  for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
-}
-=======
 
 /// Appends the samples of the piece [a, b) of a boundary edge (arc sa → sb, metrics ma, mb) to
 /// `sub`/`subS`, halving it while it is longer than a quarter in the metric or its metric
@@ -307,7 +238,6 @@ void sampleBoundaryPiece(const MetricField& metric, const Vec2& a, const Metric2
   subS.push_back(sa);
 }
 
->>>>>>> main
 }  // namespace
 
 void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
@@ -316,11 +246,9 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     const auto& poly = geo.loops()[l];
     const int n = int(poly.points.size());
     // Fine table (Euclidean arc, metric arc) along the closed loop.
+    std::vector<Metric2> pm(n);
+    metric.evaluate(poly.points, pm);
     std::vector<Vec2> sub;
-<<<<<<< HEAD
-    std::vector<double> subS, sM;
-    boundaryMetricTable(poly, metric, sub, subS, sM);
-=======
     std::vector<double> subS;
     int hint = -1;
     for (int k = 0; k < n; ++k) {
@@ -334,7 +262,6 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     metric.evaluate(sub, sm);
     std::vector<double> sM(sub.size(), 0.0);
     for (std::size_t i = 1; i < sub.size(); ++i) sM[i] = sM[i - 1] + edgeLength(sub[i - 1], sm[i - 1], sub[i], sm[i]);
->>>>>>> main
     const double LM = sM.back();
     auto metricAt = [&](double s) {  // Euclidean arc (in [0, L]) → metric arc
       const std::size_t i =
@@ -359,7 +286,7 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
       arcLength.push_back(s);
     };
     if (poly.corners.empty()) {
-      const int pieces = std::max(3, int(std::lround(LM + 1e-9)));
+      const int pieces = std::max(3, int(std::lround(LM)));
       double last = -1.0;
       Vec2 first{}, lastPoint{};
       for (int i = 0; i < pieces; ++i) {  // strictly increasing arcs, distinct points (as below)
@@ -381,8 +308,7 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
       const double m1 = s1 <= poly.length ? metricAt(s1) : metricAt(s1 - poly.length) + LM;
       const bool kept = !poly.kept.empty() && poly.kept[std::size_t(poly.corners[c])] &&
                         poly.corners[(c + 1) % nc] == (poly.corners[c] + 1) % n;  // one kept segment
-      // (1e-9: a metric length of exactly k + ½, summed over many samples, rounds as k + ½ does)
-      const int pieces = kept ? 1 : std::max(1, int(std::lround(m1 - m0 + 1e-9)));
+      const int pieces = kept ? 1 : std::max(1, int(std::lround(m1 - m0)));
       push(NodeKind::Vertex, s0);
       // Strictly increasing arcs and distinct points, corners included: where the metric size
       // falls below the resolution of the tables (or of the coordinates), a node that would
