@@ -81,9 +81,21 @@ struct AdaptOptions {
   /// 5·10³–2·10⁴ vertices; p = ∞ brings them to 0.83–0.98×. Where u is smooth (wave front, peak)
   /// p = ∞ costs little L2 and gains H1 (the W^{1,2}-optimal density, metric_from_hessian.hpp, is
   /// det|H|^(1/2) too).
+  ///
+  /// shapeBlend 0.15 (metric_from_hessian.hpp: the shape (|H|/√det|H|)^1.15, a little more
+  /// anisotropic than the Lp one, towards the H1-optimal |H|²/det|H|; the density stays
+  /// √det|H|). With the short-axis lattice and the gradation below, measured with
+  /// examples/compare_freefem/run.sh --maxnv 4e4 (N ≈ 2–4·10⁴), worst ratios to FreeFem++ over
+  /// the cycles ≥ 5·10³ vertices, L2 / H1, shape blend 0 → 0.15: tanh layer 0.11/0.74 →
+  /// 0.03/0.52, line singularity 0.13/0.92 → see docs/benchmarks.md; at 10⁴ vertices on every problem:
+  /// H1 of the wave front 0.84 → 0.81, line singularity 0.93 → 0.85, multiple 0.87 → 0.81, tanh
+  /// layer 1.37 → 0.43 (the first pass of a size), corners within ±0.01; L2 rises (wave front
+  /// 0.70 → 0.76, multiple 0.58 → 0.77) but stays below 0.8 there. With norm H1 set, reset it for the
+  /// norm's own shape (`ablmg adapt --norm h1` does).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
+    m.shapeBlend = 0.15;
     return m;
   }();
   /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.3 (MMG's): without it the metric of a

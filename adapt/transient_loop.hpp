@@ -72,6 +72,7 @@ struct TransientOptions {
   AdaptOptions adapt = [] {
     AdaptOptions a;
     a.metric.p = 2;
+    a.metric.shapeBlend.reset();  // the Lp shape, as measured
     a.hgrad = 0;
     return a;
   }();

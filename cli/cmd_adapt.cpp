@@ -73,7 +73,7 @@ struct Args {
 
 Args parseArgs(const std::vector<std::string>& args) {
   Args a;
-  bool haveTargets = false;
+  bool haveTargets = false, shapeBlendGiven = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& key = args[i];
     auto value = [&]() -> const std::string& {
@@ -115,8 +115,11 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.metric.p = parseNumber(value(), "adapt: --p", Infinity::Allowed);
     } else if (key == "--norm") {
       a.options.metric.norm = adapt::parseErrorNorm(value());
+      // --norm h1 without --shape-blend: the norm's own shape (the default blend is the L2 norm's)
+      if (a.options.metric.norm == adapt::ErrorNorm::H1 && !shapeBlendGiven) a.options.metric.shapeBlend.reset();
     } else if (key == "--shape-blend") {
       a.options.metric.shapeBlend = parseNumber(value(), "adapt: --shape-blend");
+      shapeBlendGiven = true;
     } else if (key == "--hgrad") {
       a.options.hgrad = parseNumber(value(), "adapt: --hgrad");
     } else if (key == "--hessian") {

@@ -32,7 +32,8 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
   p                  the norm's exponent, >= 1 or inf
   (every default is AdaptOptions' in adapt/adaptive_loop.hpp, i.e. `ablmg adapt`'s: the call
   with no options gives the metric of its loop; ablmg.ADAPT_DEFAULTS lists them)
-  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the norm's own
+  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.15 with
+                     norm 'l2', the H1 shape with 'h1'); 0: the Lp shape
   hmin, hmax         size bounds; hmax = inf means a quarter of the bounding-box diagonal
   max_anisotropy     largest h1/h2 (>= 1)
   hgrad              <= 0: no gradation; > 1: gradation factor
@@ -70,8 +71,8 @@ void bindAdapt(py::module_& m) {
   m.def(
       "hessian_metric",
       [](py::handle points, py::handle triangles, py::handle u, double targetVertices, const std::string& norm,
-         double p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy,
-         double hgrad, const std::string& method) {
+         double p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy, double hgrad,
+         const std::string& method) {
         const Mesh2 mesh = toMesh(points, triangles, py::none(), py::none(), true, "hessian_metric");
         const std::vector<double> values = toValues(u, "u", mesh.numVertices());
         adapt::AdaptOptions o;
@@ -79,7 +80,8 @@ void bindAdapt(py::module_& m) {
         o.hessian = adapt::parseHessianMethod(method);
         o.metric.norm = adapt::parseErrorNorm(norm);
         o.metric.p = p;
-        o.metric.shapeBlend = shapeBlend;
+        // None: the loop's (AdaptOptions: its blend for the L2 norm, the norm's own shape for H1)
+        if (shapeBlend || o.metric.norm == adapt::ErrorNorm::H1) o.metric.shapeBlend = shapeBlend;
         o.metric.hmin = hmin;
         o.metric.hmax = hmax;
         o.metric.maxAnisotropy = maxAnisotropy;

@@ -114,7 +114,9 @@ for name in $problem; do
   {
     echo "### $name"
     echo
-    echo "Measured $(date -u +%Y-%m-%d), commit $commit, \`examples/compare_freefem/run.sh --problem $name\`" \
+    maxnvArg=""
+    [[ "$maxnv" == 1.2e5 ]] || maxnvArg=" --maxnv $maxnv"
+    echo "Measured $(date -u +%Y-%m-%d), commit $commit, \`examples/compare_freefem/run.sh --problem $name$maxnvArg\`" \
       "(FreeFem++ $edp $ffargs; ablmg adapt $abargs --vertices $nff${extra[*]:+ ${extra[*]}})."
     tail -n +2 "$dir/compare_body.md"
   } > "$dir/compare.md"
