@@ -140,9 +140,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = watch.seconds();
+    row.tAssembly = sol.stats.assemblySeconds;
+    row.tOrdering = sol.stats.orderingSeconds;
+    row.tFactor = sol.stats.solveSeconds - sol.stats.orderingSeconds;
+    watch.restart();
     const fem::ErrorReport err = problem.exact
                                      ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
                                      : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
+    row.tErrors = problem.exact ? watch.seconds() : 0.0;
     row.l2 = err.l2;
     row.h1 = err.h1;
     row.l2Interp = err.l2Interp;

@@ -21,7 +21,9 @@
 /// that regions where u is linear still get a few elements across the domain).
 ///
 /// Row k of the report: vertices/triangles/errors/quality of mesh_k; t_mesh = time to build
-/// mesh_k, t_solve = assembly + solve on it, t_recover/t_metric = building M_k from u_k (0 in
+/// mesh_k, t_solve = assembly + solve on it (split into t_assembly, t_ordering, t_factor =
+/// CHOLMOD's analysis + factorisation + triangular solves), t_errors = the error norms against
+/// the exact solution (not part of t_solve), t_recover/t_metric = building M_k from u_k (0 in
 /// the last cycle, where no next mesh is built). Times are wall seconds (steady clock), the
 /// only non-deterministic numbers in the report.
 #include "ablmg/adapt/gradation.hpp"
@@ -138,7 +140,9 @@ struct CycleReport {
   double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
-  long predictedVertices = 0;  ///< the mesher's estimate N* for mesh_k
+  double tAssembly = 0, tOrdering = 0, tFactor = 0;  ///< the parts of tSolve
+  double tErrors = 0;                                ///< computeErrors (0 without an exact solution)
+  long predictedVertices = 0;                        ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
 };
 

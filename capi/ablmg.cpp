@@ -36,7 +36,7 @@ struct ablmg_handle {
   bool haveVertices = false, haveTriangles = false, haveEdges = false, haveMetric = false;
   // Options (ablmg remesh's defaults).
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
-  long long seed = 1;
+  long long seed = 0;
   int threads = 0;
   ablmg::adapt::RemeshOptions::WarmStart warmStart = ablmg::adapt::RemeshOptions::WarmStart::IfFits;
   // Last result and message.

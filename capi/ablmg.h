@@ -116,9 +116,12 @@ typedef enum ablmg_option {
   ABLMG_HGRAD = 3,  /**< double, default 1.3 (MMG's): size gradation beta > 1 after the clamp
                          (metric-space, adapt/gradation.hpp); <= 0 (MMG's -1) disables it;
                          (0, 1] is refused */
-  ABLMG_SEED = 4,   /**< int >= 0, default 1: the placement's seed
-                         (mesher::PlacementOptions::seed), the `--seed` of `ablmg remesh`;
-                         the same seed gives the same mesh */
+  ABLMG_SEED = 4,   /**< int >= 0, default 0: the placement's seed
+                         (mesher::PlacementOptions::seed), the `--seed` of `ablmg remesh`:
+                         0 places the nodes as the lattice and warm start put them; s > 0
+                         first moves each interior node by a draw of (s, node) within 0.1
+                         metric units, giving another mesh of the same statistics. The same
+                         seed gives the same mesh */
   ABLMG_THREADS = 5, /**< int >= 0, default 0 (OpenMP's default): threads of the remesh; the
                          result does not depend on it. The caller's OpenMP setting is
                          restored when ablmg_remesh returns. */

@@ -314,8 +314,10 @@ int runAdapt(const std::vector<std::string>& argv) {
     std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
     if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
     std::printf(" est=%.3e", r.l2InterpEstimate);
-    std::printf(" q=%.3f/%.3f  t: solve %.2fs recover %.2fs metric %.2fs mesh %.2fs\n", r.qMean, r.qMin, r.tSolve,
-                r.tRecover, r.tMetric, r.tMesh);
+    std::printf(
+        " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
+        "metric %.2fs mesh %.2fs\n",
+        r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
     std::fflush(stdout);
     if (a.vtu) {
       const int n = c.mesh.numVertices();
@@ -360,13 +362,15 @@ int runAdapt(const std::vector<std::string>& argv) {
 
   // 4. Reports: CSV, JSON.
   io::writeFileAtomically((fs::path(a.outDir) / "convergence.csv").string(), [&](std::ostream& os) {
-    os << kCsvHeader << ",target_vertices,max_vertex_error,predicted_vertices,l2_interp_estimate\n";
+    os << kCsvHeader
+       << ",target_vertices,max_vertex_error,predicted_vertices,l2_interp_estimate,t_assembly,t_ordering,t_factor,"
+          "t_errors\n";
     os.precision(10);
     for (const auto& r : report.cycles)
       os << r.cycle << ',' << r.vertices << ',' << r.triangles << ',' << r.l2 << ',' << r.h1 << ',' << r.l2Interp << ','
          << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh
          << ',' << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << ',' << r.l2InterpEstimate
-         << '\n';
+         << ',' << r.tAssembly << ',' << r.tOrdering << ',' << r.tFactor << ',' << r.tErrors << '\n';
   });
   auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   nlohmann::json j;
@@ -402,6 +406,10 @@ int runAdapt(const std::vector<std::string>& argv) {
                            {"q_mean", r.qMean},
                            {"q_min", r.qMin},
                            {"t_solve", r.tSolve},
+                           {"t_assembly", r.tAssembly},
+                           {"t_ordering", r.tOrdering},
+                           {"t_factor", r.tFactor},
+                           {"t_errors", r.tErrors},
                            {"t_recover", r.tRecover},
                            {"t_metric", r.tMetric},
                            {"t_mesh", r.tMesh}});

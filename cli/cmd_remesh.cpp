@@ -54,7 +54,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write);
                    a progress line on stderr if it is a terminal, unless -v is 0 or -1
-  --seed N         placement seed (default 1)
+  --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
+                   the same statistics, the same for the same N
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see docs/method.md), long
@@ -108,7 +109,7 @@ int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0;
   int verbose = 1, metField = 0;
-  long long seed = 1;
+  long long seed = 0;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
   for (std::size_t i = 0; i < args.size(); ++i) {

@@ -14,7 +14,7 @@
 //                "u": [-1, 1], "v": [-1, 1],                      over [u0,u1]×[v0,v1];
 //                "weld": false},                                   true: weld the sides that r maps
 //                                                                  onto each other (periodic r)
-//    "h": 0.05, "seed": 1,
+//    "h": 0.05, "seed": 0,
 //    "options": {"placement": {...}, "connect": {...}}}         as in `ablmg mesh` configs
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
 // files are written only once the mesh exists, each atomically.
@@ -66,7 +66,8 @@ meshed with M2 = J^T M3 J (eq. 16) for the isotropic 3D size H (eq. 17), then ma
   --png-param PNG  the parameter-space mesh coloured by Lee's quality
   --png-3d PNG     a shaded view of the 3D mesh (orthographic, Lambert shading)
   --json R.json    report: options, counts, quality distribution, edge lengths, manifold check, times
-  --seed N         placement seed (default 1)
+  --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
+                   the same statistics, the same for the same N
   -v N             0: no progress line on stderr (shown on a terminal only; default 1)
 )";
 
@@ -83,7 +84,7 @@ struct SurfaceSetup {
   std::unique_ptr<mesher::ParametricSurface> surface;
   std::string name;
   double h = 0;
-  long long seed = 1;
+  long long seed = 0;
   mesher::MeshOptions options;
 };
 

@@ -2,6 +2,7 @@
 #include "ablmg/mesher/parallel_threshold.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/adjacency.hpp"
 #include "ablmg/mesher/bubble_force.hpp"
 #include "ablmg/mesher/bubble_system.hpp"
@@ -13,16 +14,13 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 namespace ablmg::mesher {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// Restores the OpenMP thread count on scope exit.
 struct ThreadScope {
@@ -97,6 +95,43 @@ void zOrder(NodeSet& nodes, int first) {
   }
 }
 
+/// splitmix64 (Steele, Lea, Flood 2014): a counter-based generator, so the draw of node k
+/// depends on (seed, k) only, not on the order or the thread that asks.
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double unitDraw(std::uint64_t seed, std::uint64_t counter) {
+  return double(splitmix64(splitmix64(seed) ^ counter) >> 11) * 0x1.0p-53;  // [0, 1)
+}
+
+/// PlacementOptions::seed: each interior node first in [first, size) moves by a draw uniform
+/// in the metric disk of radius kSeedJitter around it (node k's draw depends on (seed, k)
+/// only); a move that would leave the domain or come within 0.5 metric units of its boundary
+/// is not made. Seed 0 leaves the nodes where they are.
+void jitterInterior(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, int first,
+                    std::uint64_t seed) {
+  constexpr double kSeedJitter = 0.1;  // metric units: the dynamics relax it in a few steps
+  const int n = nodes.size();
+  if (seed == 0 || n <= first) return;
+  std::vector<Vec2> pts(nodes.positions.begin() + first, nodes.positions.end());
+  std::vector<Metric2> ms(pts.size());
+  metric.evaluate(pts, ms);
+  for (int i = first; i < n; ++i) {
+    const std::size_t k = std::size_t(i - first);
+    const double r = kSeedJitter * std::sqrt(unitDraw(seed, 2 * k)),
+                 phi = 2 * std::numbers::pi * unitDraw(seed, 2 * k + 1);
+    const MetricEigen e = ms[k].eigen();
+    const Vec2 u(r * std::cos(phi) * e.h1, r * std::sin(phi) * e.h2);
+    const double c = std::cos(e.theta), s = std::sin(e.theta);
+    const Vec2 p = pts[k] + Vec2(c * u.x() - s * u.y(), s * u.x() + c * u.y());
+    if (geo.inside(p) && geo.metricDistanceToBoundary(p, ms[k], reachBox(ms[k], 0.5)) >= 0.5) nodes.positions[i] = p;
+  }
+}
+
 /// Share of neighbour pairs (w < 1.3, w the force's pair distance, bubble_force.hpp) whose
 /// w is within ±10 % of 1: the packing's edge-length statistic, cheap enough every 10 steps.
 /// Integer counts: deterministic for any thread count.
@@ -119,13 +154,6 @@ double unitPairShare(const BubbleSystem& sys, const AdjacencyLists& adj, PairDis
     }
   return near > 0 ? double(unit) / double(near) : 1.0;
 }
-
-/// Accumulates the seconds of its scope into `total`.
-struct ScopedSeconds {
-  double& total;
-  Clock::time_point start = Clock::now();
-  ~ScopedSeconds() { total += since(start); }
-};
 
 /// The §3 driver: initial placement, then per step the stop rules, one dynamics step, a
 /// population pass when due and the adjacency upkeep; then the output. The schedules and stop
@@ -189,7 +217,7 @@ NodePlacer::NodePlacer(const Domain& domain, const MetricField& metric, const Pl
 
 /// 1. Initial placement (§3.1), after checking the predicted size.
 BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
-  ScopedSeconds timer{st_.secondsInitial};
+  ScopedTimer timer{st_.secondsInitial};
   const int holes = int(domain.loops().size()) - 1;
   const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo_, metric_, 64);
   ABLMG_REQUIRE(coarse <= double(o_.maxNodes), "placeNodes: the metric asks for about "
@@ -204,6 +232,7 @@ BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
   const double spacing = std::sqrt(domain.area() / std::max<double>(st_.predictedNodes, 1.0));
   const int firstInterior = nodes.size();
   placeInteriorNodes(geo_, metric_, nodes, spacing, o_.lattice, o_.warmStart);
+  jitterInterior(geo_, metric_, nodes, firstInterior, o_.seed);
   zOrder(nodes, firstInterior);
   arc.resize(nodes.size(), -1.0);
   BubbleSystem sys(geo_, std::move(nodes), std::move(arc));
@@ -215,12 +244,12 @@ BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
 /// The lists, the first forces and the convergence target.
 void NodePlacer::startDynamics() {
   {
-    ScopedSeconds timer{st_.secondsAdjacency};
+    ScopedTimer timer{st_.secondsAdjacency};
     adj_ = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
     sys_.clearMoved();
   }
   {
-    ScopedSeconds timer{st_.secondsDynamics};
+    ScopedTimer timer{st_.secondsDynamics};
     residual_ = sys_.computeForces(adj_, p_);
   }
   st_.initialResidual = residual_;
@@ -240,7 +269,7 @@ PlacementResult NodePlacer::run() {
   for (int step = 0; step < o_.maxSteps; ++step) {
     if (relax_.over(step)) break;
     if (step > 0) {
-      ScopedSeconds timer{st_.secondsDynamics};
+      ScopedTimer timer{st_.secondsDynamics};
       residual_ = sys_.computeForces(adj_, p_);
     }
     if (progress_ && step % progressEvery_ == 0)
@@ -268,7 +297,7 @@ bool NodePlacer::keepGoing(int step) {
   if (plateau_.sampleDue(step) && !relax_.relaxing()) {
     double share;
     {
-      ScopedSeconds timer{st_.secondsDynamics};
+      ScopedTimer timer{st_.secondsDynamics};
       share = unitPairShare(sys_, adj_, o_.pairDistance);
     }
     if (plateau_.reached(share, population_.settled() || population_.nearlySettled(), step - stall_.markStep())) {
@@ -283,7 +312,7 @@ bool NodePlacer::keepGoing(int step) {
 /// neighbour moves may have loaded it since): converged only when every bubble agrees.
 bool NodePlacer::convergedWithEveryBubbleAwake() {
   if (allAwake_) return true;
-  ScopedSeconds timer{st_.secondsDynamics};
+  ScopedTimer timer{st_.secondsDynamics};
   sys_.wakeAll();
   residual_ = sys_.computeForces(adj_, p_);
   allAwake_ = true;
@@ -293,7 +322,7 @@ bool NodePlacer::convergedWithEveryBubbleAwake() {
 /// One defect-annealing pass (defects.hpp): kicks the defects' neighbourhoods, after which the
 /// run goes on (stall mark restarted). False when nothing was kicked (no pass is left then).
 bool NodePlacer::annealDefects(int step) {
-  ScopedSeconds timer{st_.secondsDefects};
+  ScopedTimer timer{st_.secondsDefects};
   defects_.started(step);
   // The lists hold every pair within 1.5 (see keepAdjacency); Voronoi neighbours of a packing
   // are within ~1.3.
@@ -330,7 +359,7 @@ bool NodePlacer::stopEarly(int step) {
 }
 
 void NodePlacer::advance() {
-  ScopedSeconds timer{st_.secondsDynamics};
+  ScopedTimer timer{st_.secondsDynamics};
   sys_.advance(p_);
   if (!constant_) sys_.updateMetrics(metric_, false, o_.metricLag);
   const long awake = sys_.updateActivity(adj_, sleepBelow_, o_.timeStep);
@@ -347,14 +376,14 @@ void NodePlacer::populationPass(int step) {
   if (population_.passDue(done)) {
     PopulationChange c;
     {
-      ScopedSeconds timer{st_.secondsPopulation};
+      ScopedTimer timer{st_.secondsPopulation};
       c = adjustPopulation(sys_, adj_, geo_, metric_, population_.options());
     }
     st_.inserted += c.inserted;
     st_.deleted += c.deleted;
     if (c.inserted + c.deleted > 0) {
       relax_.edited(step);
-      ScopedSeconds timer{st_.secondsAdjacency};
+      ScopedTimer timer{st_.secondsAdjacency};
       adj_ = patchAdjacency(adj_, c.map, c.firstNew, sys_.referencePositions(), sys_.metrics(), o_.adjacencyRadius);
     }
     population_.afterPass(c.inserted + c.deleted, sys_.size());
@@ -374,7 +403,7 @@ void NodePlacer::keepAdjacency(int done) {
   const double margin = 0.5 * (o_.adjacencyRadius - 1.5);
   const bool periodic = done % std::max(1, o_.adjacencyRefresh) == 0;
   if (!periodic && sys_.maxTravelSinceRefresh() <= margin) return;
-  ScopedSeconds timer{st_.secondsAdjacency};
+  ScopedTimer timer{st_.secondsAdjacency};
   std::vector<int> far;
   if (!periodic) far = sys_.travellers(margin);
   if (!periodic && 4 * far.size() < std::size_t(sys_.size())) {
@@ -391,13 +420,13 @@ void NodePlacer::keepAdjacency(int done) {
 /// boundary edges.
 PlacementResult NodePlacer::output() {
   {
-    ScopedSeconds timer{st_.secondsDynamics};
+    ScopedTimer timer{st_.secondsDynamics};
     sys_.wakeAll();  // the final residual covers every bubble
     st_.finalResidual = sys_.computeForces(adj_, p_);
   }
   st_.hitStepCap = st_.steps >= o_.maxSteps && st_.finalResidual >= target_;
   {
-    ScopedSeconds timer{st_.secondsAdjacency};
+    ScopedTimer timer{st_.secondsAdjacency};
     sys_.updateMetrics(metric_);
     if (sys_.maxTravelSinceRefresh() < 0.5 * (o_.adjacencyRadius - 1.5))
       result_.adjacency = refreshAdjacency(adj_, sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);

@@ -30,7 +30,7 @@
 ///    grown over `steerWindow` passes: past that point the packing squeezes out (squeeze
 ///    rule) about as many nodes as the steering inserts, and that churn kept the ring's
 ///    residual from ever halving (the stall rule stopped it unconverged at ×0.15–0.19).
-/// Insertions go to the best of six candidate points at metric distance 1 around the node
+/// Insertions go to the best of twelve candidate points at metric distance 1 around the node
 /// (the one farthest, in M_i, from the node's neighbours); deletions and insertions are
 /// taken in order of α (ties by id) and lock the node's neighbours for the rest of the pass,
 /// so one gap or overlap gets one edit. Deterministic.

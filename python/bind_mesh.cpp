@@ -181,7 +181,8 @@ per-vertex metric: the call a solver makes between two solves (adapt/remesh.hpp;
   hmin, hmax      clamp the sizes of the metric to [hmin, hmax] (defaults 0, inf)
   hgrad           size gradation beta > 1 on the input mesh after the clamp (default 1.3,
                   MMG's); <= 0 (e.g. -1): none
-  seed            placement seed (default 1); lattice: 'axes' (default), 'short', 'long'
+  seed            placement seed (default 0: no jitter; s > 0: another mesh of the same
+                  statistics, the same for the same s); lattice: 'axes' (default), 'short', 'long'
   options         a MeshOptions (default MeshOptions('remesh'))
   domain          a Domain the mesh covers (e.g. the exact polygon of the problem): meshed
                   instead of the domain rebuilt from the mesh's boundary loops; the metric is
@@ -349,7 +350,7 @@ any field below by keyword. Values are range-checked when a mesh is made.)")
       .def_property(
           "seed", [](const mesher::MeshOptions& o) { return o.placement.seed; },
           [](mesher::MeshOptions& o, std::uint64_t s) { o.placement.seed = s; },
-          "placement seed (same seed, same mesh)")
+          "placement seed: 0 = the nodes as placed, s > 0 = jittered by (s, node) (same seed, same mesh)")
       .def_property(
           "lattice",
           [](const mesher::MeshOptions& o) {

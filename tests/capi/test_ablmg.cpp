@@ -110,7 +110,7 @@ adapt::RemeshResult cliRemesh(const std::string& base) {
   auto metric = io::readSol(dir + "/" + base + ".sol", mesh.numVertices());
   adapt::RemeshOptions options;
   options.name = base;
-  options.mesh.placement.seed = 1;
+  options.mesh.placement.seed = 0;  // ablmg remesh's default
   return adapt::remesh(std::move(mesh), std::move(metric), options);
 }
 

@@ -81,6 +81,25 @@ TEST(TestProblems, ReentrantCornerForSeveralAngles) {
   EXPECT_THROW(makeProblem("reentrant", {{"omega", 3.0}}), InputError);
 }
 
+TEST(TestProblems, CornerSolutionIsContinuousAcrossRoundOffBelowTheEdgeThetaZero) {
+  // A point of the edge θ = 0 computed with y = −1e−17 (round-off) is on the edge, not at θ ≈ 2π
+  // of the excluded sector: u ≈ 0 there and ∇u as just above the edge.
+  for (const auto& [name, params] : {std::pair<std::string, std::map<std::string, double>>{"lshape", {}},
+                                     {"reentrant", {{"omega", 1.25 * M_PI}}},
+                                     {"reentrant", {}},
+                                     {"multiple", {{"alpha_p", 20}, {"alpha_w", 5}, {"epsilon", 0.3}}}}) {
+    const TestProblem p = makeProblem(name, params);
+    for (const double x : {1e-6, 0.3, 0.9}) {
+      EXPECT_NEAR(p.u(x, -1e-17), p.u(x, 0.0), 1e-12) << name << " x " << x;
+      EXPECT_NEAR((p.grad(x, -1e-17) - p.grad(x, 1e-17)).norm(), 0.0, 1e-9 * p.grad(x, 1e-17).norm()) << name;
+    }
+    // Just past the other edge θ = ω, likewise.
+    const double omega = name == "reentrant" ? p.params.at("omega") : 1.5 * M_PI, t = omega + 1e-15;
+    EXPECT_NEAR(p.u(0.5 * std::cos(t), 0.5 * std::sin(t)), p.u(0.5 * std::cos(omega), 0.5 * std::sin(omega)), 1e-12)
+        << name;
+  }
+}
+
 TEST(TestProblems, LineSingularityAndMultipleDifficulties) {
   const TestProblem s = makeProblem("linesing");
   EXPECT_NEAR(s.domain.area(), 4.0, 1e-14);
