@@ -132,6 +132,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.triangles = current.mesh.numTriangles();
     row.tMesh = tMesh;
     row.predictedVertices = current.stats.placement.predictedNodes;
+    row.meshStats = current.stats;
     const auto q = metricQuality(current.mesh, current.metric);
     row.qMean = q.mean;
     row.qMin = q.min;

@@ -59,19 +59,10 @@ struct RemeshOptions {
   /// switch (AdaptOptions::warmStart, off).
   enum class WarmStart { Off, IfFits, On };
   WarmStart warmStart = WarmStart::IfFits;
-  /// The mesher's options. The seed is mesh.placement.seed, the lattice orientation
-  /// mesh.placement.lattice.orientation (Axes; ShortAxis suits Hessian metrics, see
-  /// AdaptOptions::mesh). Placement stops on the quality plateau (plateauSteps 10,
-  /// plateauGain 0.01, mesher/place_nodes.hpp): graded metrics rarely let the residual settle.
-  /// No final relaxation after the stop (finalRelaxSteps 0; `ablmg mesh` runs 10): its 10 steps
-  /// cost 12 % of the remesh time for +0.4 point of edges within ±10 % (docs/method.md).
-  mesher::MeshOptions mesh = [] {
-    mesher::MeshOptions m;
-    m.placement.plateauSteps = 10;
-    m.placement.plateauGain = 0.01;
-    m.placement.finalRelaxSteps = 0;
-    return m;
-  }();
+  /// The mesher's options: the Remesh preset (mesher/mesher.hpp: plateau stop, no final
+  /// relaxation). The seed is mesh.placement.seed, the lattice orientation
+  /// mesh.placement.lattice.orientation.
+  mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Remesh);
 };
 
 /// Throws InputError "remesh options: <field> ..." naming the field and value.

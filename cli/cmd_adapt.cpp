@@ -67,7 +67,8 @@ struct Args {
   adapt::ScheduleOptions schedule;
   std::string outDir = "adapt_out";
   bool uniform = true, vtu = true, medit = false;
-  int verbosity = 1;  ///< -v N: 0 = no progress line
+  int verbosity = 1;          ///< -v N: 0 = no progress line
+  bool printOptions = false;  ///< --print-options: print the options in effect and exit
 };
 
 Args parseArgs(const std::vector<std::string>& args) {
@@ -152,6 +153,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.verbosity = int(parseInteger(value(), "adapt: -v", 0, 10));
     } else if (key == "--out-dir") {
       a.outDir = value();
+    } else if (key == "--print-options") {
+      a.printOptions = true;
     } else if (!key.empty() && key[0] != '-') {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
@@ -162,14 +165,14 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
-                           "--plateau-gain --uniform --vtu --medit --out-dir)");
+                           "--plateau-gain --uniform --vtu --medit --out-dir --print-options)");
     }
   }
-  ABLMG_REQUIRE(a.problem.empty() != a.config.empty(),
+  ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
                 "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
   ABLMG_REQUIRE(a.config.empty() || a.params.empty(),
                 "adapt: --param is for --problem NAME; a config gives \"params\"");
-  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0,
+  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0 || a.printOptions,
                 "adapt: --vertices N (the default schedule) or --target-vertices N1,N2,... is required");
   ABLMG_REQUIRE(!(haveTargets && a.finalVertices > 0), "adapt: give --vertices N or --target-vertices, not both");
   if (a.finalVertices > 0) a.options.targetVertices = adapt::geometricSchedule(a.finalVertices, a.schedule);
@@ -248,6 +251,26 @@ bool uniformFits(const Domain& domain) {
   return true;
 }
 
+/// The loop's options as the JSON report gives them ("options").
+nlohmann::json loopOptionsJson(const Args& a, int cycles) {
+  return {{"target_vertices", a.options.targetVertices},
+          {"cycles", cycles},
+
+          {"hessian", adapt::toString(a.options.hessian)},
+          {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
+          {"norm", adapt::toString(a.options.metric.norm)},
+          {"shape_blend",
+           a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
+          {"hmin", a.options.metric.hmin},
+          {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
+          {"max_anisotropy", a.options.metric.maxAnisotropy},
+          {"hgrad", a.options.hgrad},
+          {"warm_start", a.options.warmStart},
+          {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
+          {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
+          {"seed", a.options.mesh.placement.seed}};
+}
+
 const char* kAdaptHelp =
     R"(usage: ablmg adapt (--problem NAME [--param KEY=VALUE ...] | CONFIG.json)
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
@@ -256,6 +279,7 @@ const char* kAdaptHelp =
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
+                   [--print-options]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
 fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.json's own:
@@ -274,7 +298,10 @@ Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessia
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
 length gains less than G in 10 steps (default 0.01, as ablmg remesh; 0 = run to the residual
 or stall rule: ~1/3 more remesh time, errors a few % lower; adapt/adaptive_loop.hpp).
--v N: 0 = no progress line on stderr (shown on a terminal only; default 1).
+-v N: 0 = no progress line on stderr (shown on a terminal only; default 1); >= 2 also the mesher's stage
+times for each cycle's mesh.
+--print-options: print the options in effect (JSON: the loop's and the mesher's, the "adapt"
+preset with the flags above applied) and exit; the problem and the schedule may be omitted.
 )";
 
 int runAdapt(const std::vector<std::string>& argv) {
@@ -284,6 +311,10 @@ int runAdapt(const std::vector<std::string>& argv) {
       return 0;
     }
   Args a = parseArgs(argv);
+  if (a.printOptions) {
+    printEffectiveOptions("adapt", "adapt", a.options.mesh, loopOptionsJson(a, int(a.options.targetVertices.size())));
+    return 0;
+  }
   const Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
   const bool exact = problem.data.exact.has_value();
   namespace fs = std::filesystem;
@@ -318,6 +349,23 @@ int runAdapt(const std::vector<std::string>& argv) {
         " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
         "metric %.2fs mesh %.2fs\n",
         r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
+    if (a.verbosity >= 2) {
+      const auto& p = r.meshStats.placement;
+      std::printf(
+          "  mesh %d: placement %.2fs (initial %.2f, dynamics %.2f in %d steps%s, adjacency %.2f, population "
+          "%.2f: +%ld -%ld), connection %.2fs, quality post-pass %.2fs (q min %.3f -> %.3f, %ld swaps, %ld "
+          "moves, %ld collapses), validation %.2fs\n",
+          r.cycle, p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation, p.secondsInitial,
+          p.secondsDynamics, p.steps,
+          p.qualityPlateau ? " (quality plateau)"
+          : p.stalled      ? " (stalled)"
+          : p.hitStepCap   ? " (step cap)"
+                           : "",
+          p.secondsAdjacency, p.secondsPopulation, p.inserted, p.deleted,
+          r.meshStats.connect.secondsLocalMeshes + r.meshStats.connect.secondsRepair, r.meshStats.improve.seconds,
+          r.meshStats.improve.qMinBefore, r.meshStats.improve.qMinAfter, long(r.meshStats.improve.swaps),
+          long(r.meshStats.improve.moves), long(r.meshStats.improve.collapses), r.meshStats.secondsValidate);
+    }
     std::fflush(stdout);
     if (a.vtu) {
       const int n = c.mesh.numVertices();
@@ -377,22 +425,7 @@ int runAdapt(const std::vector<std::string>& argv) {
   j["problem"] = problem.name;
   j["definition"] = problem.echo;
   if (!a.config.empty()) j["config"] = a.config;
-  j["options"] = {
-      {"target_vertices", a.options.targetVertices},
-      {"cycles", int(report.cycles.size())},
-      {"hessian", adapt::toString(a.options.hessian)},
-      {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
-      {"norm", adapt::toString(a.options.metric.norm)},
-      {"shape_blend",
-       a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
-      {"hmin", a.options.metric.hmin},
-      {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
-      {"max_anisotropy", a.options.metric.maxAnisotropy},
-      {"hgrad", a.options.hgrad},
-      {"warm_start", a.options.warmStart},
-      {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
-      {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
-      {"seed", a.options.mesh.placement.seed}};
+  j["options"] = loopOptionsJson(a, int(report.cycles.size()));
   for (const auto& r : report.cycles)
     j["cycles"].push_back({{"cycle", r.cycle},
                            {"vertices", r.vertices},

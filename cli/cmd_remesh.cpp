@@ -54,6 +54,8 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write);
                    a progress line on stderr if it is a terminal, unless -v is 0 or -1
+  --print-options  print the options in effect (JSON: these flags and the mesher's, the
+                   "remesh" preset) and exit; -in is then not needed
   --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
                    the same statistics, the same for the same N
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
@@ -109,6 +111,7 @@ int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0;
   int verbose = 1, metField = 0;
+  bool printOptions = false;
   long long seed = 0;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
@@ -153,6 +156,8 @@ int runRemesh(const std::vector<std::string>& args) {
                                : adapt::RemeshOptions::WarmStart::IfFits;
     } else if (a == "--report")
       reportPath = value();
+    else if (a == "--print-options")
+      printOptions = true;
     else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
@@ -160,14 +165,15 @@ int runRemesh(const std::vector<std::string>& args) {
       in = a;  // mmg2d also takes the input as a positional argument
     }
   }
-  ABLMG_REQUIRE(!in.empty(), "missing -in IN.mesh (see ablmg remesh --help)");
+  ABLMG_REQUIRE(!in.empty() || printOptions, "missing -in IN.mesh (see ablmg remesh --help)");
   ABLMG_REQUIRE(hmin >= 0 && hmin < hmax, "need 0 <= hmin < hmax, got hmin " << hmin << ", hmax " << hmax);
   ABLMG_REQUIRE(seed >= 0, "--seed must be >= 0");
   const std::filesystem::path inPath(in);
-  if (sol.empty()) sol = std::filesystem::path(in).replace_extension(".sol").string();
-  if (out.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
-  ABLMG_REQUIRE(std::filesystem::path(out).extension() == ".mesh", "-out '" << out << "' must end in .mesh");
-  const std::string outSol = std::filesystem::path(out).replace_extension(".sol").string();
+  if (sol.empty() && !in.empty()) sol = std::filesystem::path(in).replace_extension(".sol").string();
+  if (out.empty() && !in.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
+  ABLMG_REQUIRE(printOptions || std::filesystem::path(out).extension() == ".mesh",
+                "-out '" << out << "' must end in .mesh");
+  const std::string outSol = out.empty() ? "" : std::filesystem::path(out).replace_extension(".sol").string();
   ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
                 "--report must not be the output mesh or .sol");
 
@@ -196,6 +202,12 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"hsiz", hsiz},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
+    if (printOptions) {
+      nlohmann::json own = resolved;
+      own.erase("options");
+      printEffectiveOptions("remesh", "remesh", options.mesh, own);
+      return 0;
+    }
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);

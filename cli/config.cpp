@@ -9,6 +9,7 @@
 #include <limits>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <set>
 #include <sstream>
 #include <variant>
@@ -356,7 +357,18 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
   const Where w =
       colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
   requireObject(j, w);
-  checkKeys(j, {"placement", "connect", "improve"}, w);
+  checkKeys(j, {"preset", "placement", "connect", "improve"}, w);
+  if (j.contains("preset")) {  // the named configuration first (mesher/mesher.hpp), then the fields
+    const Where wp = w / "preset";
+    const std::string name = getString(j["preset"], wp);
+    mesher::MeshOptions base;
+    try {
+      base = mesher::meshPreset(mesher::parseMeshPreset(name));
+    } catch (const InputError& e) { ABLMG_REQUIRE(false, wp.str() << ": " << e.what()); }
+    base.progress = std::move(options.progress);
+    base.progressEvery = options.progressEvery;
+    options = std::move(base);
+  }
   if (j.contains("placement")) {
     // The numeric fields by binding; the lattice orientation is the one string-valued field.
     json placement = j["placement"];
@@ -389,6 +401,18 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       mesher::requireValid(options.improve);
     } catch (const InputError& e) { ABLMG_REQUIRE(false, (w / "improve").str() << ": " << e.what()); }
   }
+}
+
+void printEffectiveOptions(const std::string& command, const std::string& preset, const mesher::MeshOptions& options,
+                           const nlohmann::json& commandOptions) {
+  json out = {{"command", command}};
+  if (commandOptions.is_object())
+    for (const auto& [k, v] : commandOptions.items()) out[k] = v;
+  json mesh = {{"preset", preset}};
+  const json fields = meshOptionsToJson(options);
+  for (const auto& [k, v] : fields.items()) mesh[k] = v;
+  out["options"] = std::move(mesh);
+  std::cout << out.dump(2) << "\n";
 }
 
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
@@ -440,7 +464,10 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
   ABLMG_REQUIRE(j.contains("metric"), name << ": metric: missing (required)");
   Config c;
   // Cheap checks first: options and outputs before reading any file.
-  if (j.contains("options")) applyMeshOptions(j["options"], c.options, name + ": options");
+  if (j.contains("options")) {
+    applyMeshOptions(j["options"], c.options, name + ": options");
+    if (j["options"].contains("preset")) c.preset = j["options"]["preset"].get<std::string>();
+  }
   if (j.contains("outputs")) {
     const Where wo = top / "outputs";
     const json& o = requireObject(j["outputs"], wo);

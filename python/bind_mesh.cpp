@@ -121,11 +121,9 @@ std::optional<Metric2> constantMetric(const py::handle& metric) {
 }
 
 mesher::MeshOptions preset(const std::string& name) {
-  if (name == "mesh") return {};
-  if (name == "remesh") return adapt::RemeshOptions{}.mesh;
-  if (name == "adapt") return adapt::AdaptOptions{}.mesh;
-  ABLMG_REQUIRE(false, "MeshOptions: preset must be 'mesh', 'remesh' or 'adapt', got '" << name << "'");
-  return {};
+  ABLMG_REQUIRE(name == "mesh" || name == "remesh" || name == "adapt",
+                "MeshOptions: preset must be 'mesh', 'remesh' or 'adapt', got '" << name << "'");
+  return mesher::meshPreset(mesher::parseMeshPreset(name));
 }
 
 /// options (a MeshOptions or None → the preset), then the seed and lattice shortcuts.
