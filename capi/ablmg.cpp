@@ -36,7 +36,7 @@ struct ablmg_handle {
   std::vector<ablmg::Metric2> metric;
   bool haveVertices = false, haveTriangles = false, haveEdges = false, haveMetric = false;
   // Options (ablmg remesh's defaults).
-  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
+  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, metricQuantum = 0;
   long long seed = 0;
   int threads = 0;
   ablmg::adapt::RemeshOptions::WarmStart warmStart = ablmg::adapt::RemeshOptions::WarmStart::IfFits;
@@ -324,9 +324,14 @@ int ablmg_set_double(ablmg_t* h, ablmg_option option, double value) {
           fail(ABLMG_ERR_ARGUMENT, "hgrad = ", value, " must be > 1 (or <= 0 to disable the gradation)");
         h->hgrad = value;
         break;
+      case ABLMG_METRIC_QUANTUM:
+        if (!std::isfinite(value) || value < 0)
+          fail(ABLMG_ERR_ARGUMENT, "metric quantum = ", value, " must be finite and >= 0 (0: off)");
+        h->metricQuantum = value;
+        break;
       default:
         fail(ABLMG_ERR_ARGUMENT, "option ", optionCode(option),
-             " is not a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD)");
+             " is not a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD, ABLMG_METRIC_QUANTUM)");
     }
   });
 }
@@ -372,6 +377,7 @@ int ablmg_remesh(ablmg_t* h) {
     options.mesh.placement.threads = h->threads;
     options.mesh.connect.threads = h->threads;
     options.warmStart = h->warmStart;
+    options.metricQuantum = h->metricQuantum;
     ablmg::adapt::validate(options);
     const ablmg::MeshValidation check = mesh.validate();
     if (!check.ok) fail(ABLMG_ERR_INVALID_MESH, "input: invalid mesh: ", check.firstProblem);

@@ -499,3 +499,23 @@ TEST(CApi, TransferRefusesBadCallsAndKeepsItsSource) {
   old = sampleFields(a.xy, a.n);
   EXPECT_EQ(code(old.data(), a.n, 1, 1, out.data(), nNew), ABLMG_OK) << ablmg_last_error(h.get());
 }
+
+TEST(CApi, MetricQuantumAbsorbsRoundOffInTheMetric) {
+  const Arrays a = fileArrays("freefem");
+  Arrays b = a;  // the metric moved by ~1e-11 relative, as another solver's round-off would
+  for (std::size_t i = 0; i < b.metric.size(); ++i) b.metric[i] *= 1 + 1e-11 * std::sin(double(i));
+  std::vector<Mesh2> meshes;
+  for (double quantum : {0.0, 0x1.0p-8})
+    for (const Arrays* in : {&a, static_cast<const Arrays*>(&b)}) {
+      Handle h(ablmg_create());
+      ASSERT_EQ(setAll(h.get(), *in), ABLMG_OK);
+      ASSERT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, quantum), ABLMG_OK);
+      ASSERT_EQ(ablmg_remesh(h.get()), ABLMG_OK) << ablmg_last_error(h.get());
+      meshes.push_back(resultOf(h.get()).first);
+    }
+  EXPECT_NE(meshes[0].vertices, meshes[1].vertices);  // the placement is chaotic in its input
+  expectSameMesh(meshes[2], meshes[3]);
+  Handle h(ablmg_create());
+  EXPECT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, -1), ABLMG_ERR_ARGUMENT);
+  EXPECT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, std::nan("")), ABLMG_ERR_ARGUMENT);
+}
