@@ -1,4 +1,5 @@
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/adapt/metric_snap.hpp"
 
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
@@ -32,6 +33,8 @@ void validate(const RemeshOptions& o) {
   ABLMG_REQUIRE(o.hmax > o.hmin, "remesh options: hmax must be > hmin, got hmax " << o.hmax << ", hmin " << o.hmin);
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "remesh options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
+  ABLMG_REQUIRE(std::isfinite(o.metricQuantum) && o.metricQuantum >= 0,
+                "remesh options: metricQuantum must be >= 0 (0 = off), got " << o.metricQuantum);
 }
 
 namespace {
@@ -62,8 +65,9 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
     ABLMG_REQUIRE(v.ok, name << ": invalid mesh: " << v.firstProblem);
     r.secondsValidate = watch.seconds();
   }
-  // 1. Sizes clamped to [hmin, hmax].
+  // 1. Sizes clamped to [hmin, hmax] (after the snap to a grid, when asked for).
   watch.restart();
+  if (options.metricQuantum > 0) snapMetrics(metric, options.metricQuantum);
   r.clampedMetrics = clampSizes(metric, options.hmin, options.hmax);
   r.secondsClamp = watch.seconds();
   // 2. Gradation: sizes grow by at most ≈ hgrad per unit metric length along the input edges.

@@ -59,6 +59,10 @@ struct RemeshOptions {
   /// switch (AdaptOptions::warmStart, off).
   enum class WarmStart { Off, IfFits, On };
   WarmStart warmStart = WarmStart::IfFits;
+  /// > 0: the input metric is first snapped to a grid of this step (metric_snap.hpp), so that
+  /// metrics differing by round-off (a distributed solver's) give the same mesh; 0: used as
+  /// given (default; the meshes of `ablmg remesh`).
+  double metricQuantum = 0;
   /// The mesher's options: the Remesh preset (mesher/mesher.hpp: plateau stop, no final
   /// relaxation). The seed is mesh.placement.seed, the lattice orientation
   /// mesh.placement.lattice.orientation.

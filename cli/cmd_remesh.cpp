@@ -54,6 +54,9 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write);
                    a progress line on stderr if it is a terminal, unless -v is 0 or -1
+  --metric-quantum Q  snap the metric to a grid of step Q first (0 = off, the default; e.g.
+                   0.00390625 = 2^-8): metrics differing by round-off give the same mesh
+                   (adapt/metric_snap.hpp)
   --print-options  print the options in effect (JSON: these flags and the mesher's, the
                    "remesh" preset) and exit; -in is then not needed
   --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
@@ -109,7 +112,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
-  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0;
+  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0, metricQuantum = 0;
   int verbose = 1, metField = 0;
   bool printOptions = false;
   long long seed = 0;
@@ -158,7 +161,10 @@ int runRemesh(const std::vector<std::string>& args) {
       reportPath = value();
     else if (a == "--print-options")
       printOptions = true;
-    else if (!a.empty() && a[0] == '-')
+    else if (a == "--metric-quantum") {
+      metricQuantum = parseNumber(value(), "remesh: " + a);
+      ABLMG_REQUIRE(metricQuantum >= 0, "remesh: --metric-quantum must be >= 0 (0 = off), got " << metricQuantum);
+    } else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
       ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
@@ -185,6 +191,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
   options.warmStart = warmStart;
+  options.metricQuantum = metricQuantum;
   nlohmann::json resolved;
   {
     resolved = {{"in", in},
@@ -200,6 +207,7 @@ int runRemesh(const std::vector<std::string>& args) {
                                                                                   : "auto"},
                 {"metField", metField},
                 {"hsiz", hsiz},
+                {"metricQuantum", metricQuantum},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (printOptions) {

@@ -78,3 +78,5 @@ add_test(NAME cli.mesh_disk_bubbles COMMAND ablmg mesh ${_out}/disk.json --bubbl
 set_tests_properties(cli.mesh_disk_bubbles PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "vertices, 0 triangles")
 add_test(NAME cli.mesh_disk COMMAND ablmg mesh ${_out}/disk.json -o ${_out}/disk.mesh -o ${_out}/disk.png --report ${_out}/disk_report.json)
 set_tests_properties(cli.mesh_disk PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")
+ablmg_cli_failure(remesh_negative_metric_quantum "remesh: --metric-quantum must be >= 0 \\(0 = off\\), got -1"
+                  remesh -in ${_data}/square.mesh --metric-quantum -1 -out ${_out}/remesh_negative_metric_quantum.mesh)
