@@ -240,8 +240,9 @@ Problem configProblem(const std::string& path) {
   return p;
 }
 
-/// True when structuredMesh can grid the domain (axis-parallel sides).
+/// True when structuredMesh can grid the domain (axis-parallel sides, no slits).
 bool uniformFits(const Domain& domain) {
+  if (domain.hasSlits()) return false;
   for (const auto& loop : domain.loops())
     for (std::size_t k = 0; k < loop.points.size(); ++k) {
       const Vec2 d = loop.points[(k + 1) % loop.points.size()] - loop.points[k];
@@ -467,7 +468,7 @@ int runAdapt(const std::vector<std::string>& argv) {
     curves.back().y.push_back(r.l2InterpEstimate);
   }
   if (a.uniform && exact && !uniformFits(problem.data.domain)) {
-    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel)\n");
+    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel, or slits)\n");
   } else if (a.uniform && exact) {
     io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
     for (const auto& r : report.cycles) {

@@ -175,9 +175,44 @@ json bindingsToJson(const S& s, const std::vector<Binding<S>>& bindings) {
   return j;
 }
 
+Domain parseDomain(const json& j, const Where& w, const std::string& baseDir);
+
+/// "slits": [{"points": [[x, y], ...], "tags": [left, right]}, ...] added to `d` in order
+/// (Domain::withSlit: attached where points[0] is on the boundary, else free).
+Domain applySlits(Domain d, const json& S, const Where& ws) {
+  requireType(S, S.is_array(), "array of slits {\"points\": [[x, y], ...], \"tags\": [left, right]}", ws);
+  for (std::size_t k = 0; k < S.size(); ++k) {
+    const Where wk = ws[k];
+    requireObject(S[k], wk);
+    checkKeys(S[k], {"points", "tags"}, wk);
+    ABLMG_REQUIRE(S[k].contains("points"), wk.str() << ": points: missing (required)");
+    const json& P = S[k]["points"];
+    requireType(P, P.is_array() && P.size() >= 2, "array of ≥ 2 points [x, y]", wk / "points");
+    std::vector<Vec2> pts;
+    for (std::size_t i = 0; i < P.size(); ++i) pts.push_back(getPoint(P[i], (wk / "points")[i]));
+    int tags[2] = {1, 1};
+    if (S[k].contains("tags")) {
+      const json& T = S[k]["tags"];
+      requireType(T, T.is_array() && T.size() == 2 && T[0].is_number_integer() && T[1].is_number_integer(),
+                  "[left, right] (two integers)", wk / "tags");
+      tags[0] = T[0].get<int>();
+      tags[1] = T[1].get<int>();
+    }
+    try {
+      d = d.withSlit(pts, tags[0], tags[1]);
+    } catch (const InputError& e) { throw InputError(wk.str() + ": " + e.what()); }
+  }
+  return d;
+}
+
 Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
   requireObject(j, w);
   ABLMG_REQUIRE(!j.empty(), w.str() << ": empty; expected one of rectangle, disk, poly, loops");
+  if (j.contains("slits")) {
+    json rest = j;
+    rest.erase("slits");
+    return applySlits(parseDomain(rest, w, baseDir), j["slits"], w / "slits");
+  }
   if (j.contains("rectangle")) {
     checkKeys(j, {"rectangle"}, w);
     const Where wr = w / "rectangle";

@@ -2,6 +2,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
+#include "ablmg/mesher/slit_domain.hpp"
 
 namespace ablmg::mesher {
 namespace {
@@ -46,6 +47,7 @@ const char* meshPresetName(MeshPreset preset) {
 }
 
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
+  if (domain.hasSlits()) return meshSlitDomain(domain, metric, options);  // cut, meshed piece by piece
   const auto report = [&](const char* stage, long nodes) {
     if (options.progress) options.progress({.stage = stage, .nodes = nodes});
   };

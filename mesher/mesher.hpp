@@ -69,7 +69,9 @@ MeshOptions meshPreset(MeshPreset preset);
 MeshPreset parseMeshPreset(const std::string& name);
 const char* meshPresetName(MeshPreset preset);
 
-/// Meshes `domain` so that edges have unit length in `metric` (paper §3–4).
+/// Meshes `domain` so that edges have unit length in `metric` (paper §3–4). A domain with slits
+/// (Domain::hasSlits) is cut and meshed piece by piece (mesher/slit_domain.hpp): the lips get
+/// distinct vertices.
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options = {});
 
 }  // namespace ablmg::mesher

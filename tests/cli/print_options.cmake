@@ -1,4 +1,4 @@
-# `ablmg remesh|adapt|mesh --print-options`: the presets, the flags applied, and a round trip
+# `ablmg remesh|adapt|mesh|surface --print-options`: the presets, the flags applied, and a round trip
 # through an `ablmg mesh` config (check_print_options.cmake.in).
 add_test(NAME cli.print_options
          COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DOUT=${CMAKE_CURRENT_BINARY_DIR}/cli_out/print_options

@@ -71,7 +71,13 @@ TEST(TestProblems, ReentrantCornerForSeveralAngles) {
     EXPECT_GT(p.u(-0.5, 0.1), 0.0);
   }
   EXPECT_EQ(makeProblem("reentrant").params.at("omega"), 1.75 * M_PI);
-  EXPECT_THROW(makeProblem("reentrant", {{"omega", 2 * M_PI}}), InputError);  // the slit: not a polygon here
+  const TestProblem slit = makeProblem("reentrant", {{"omega", 2 * M_PI}});  // the slit: a zero-width gap
+  EXPECT_TRUE(slit.domain.hasSlits());
+  EXPECT_NEAR(slit.domain.area(), 4.0, 1e-15);
+  EXPECT_NEAR(slit.u(0.25, 1e-300), 0.0, 1e-14);  // u = 0 on both lips
+  EXPECT_NEAR(slit.u(0.25, -1e-300), 0.0, 1e-14);
+  EXPECT_NEAR(slit.u(-0.25, 0), 0.5, 1e-14);  // sqrt(r) at θ = π
+  EXPECT_THROW(makeProblem("reentrant", {{"omega", 2 * M_PI + 1e-6}}), InputError);
   EXPECT_THROW(makeProblem("reentrant", {{"omega", 3.0}}), InputError);
 }
 
