@@ -105,6 +105,39 @@ mesher::MeshOptions cycleMeshOptions(const AdaptOptions& options, int cycle, int
 void reportStage(const AdaptOptions& options, const char* stage, int cycle, int cycles, long vertices) {
   if (options.progress) options.progress({.stage = stage, .nodes = vertices, .cycle = cycle, .cycles = cycles});
 }
+/// The convergence curve (the last cycle of each target size) and its log-log rates over the
+/// last rateWindow (≤ 4) points; NaN where they cannot be fitted (fewer than 2 distinct sizes,
+/// no exact solution for the errors, a non-positive estimate).
+void fitRates(AdaptReport& report, bool exact) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const int n = int(report.cycles.size());
+  // The convergence curve: the last cycle of each target size.
+  std::vector<double> nv, l2, h1, li, le;
+  for (int k = 0; k < n; ++k) {
+    const auto& c = report.cycles[std::size_t(k)];
+    if (k + 1 < n && report.cycles[std::size_t(k) + 1].targetVertices == c.targetVertices) continue;
+    nv.push_back(double(c.vertices));
+    l2.push_back(c.l2);
+    h1.push_back(c.h1);
+    li.push_back(c.l2Interp);
+    le.push_back(c.l2InterpEstimate);
+  }
+  const int points = int(nv.size());
+  report.rateWindow = std::min(4, points);
+  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
+  bool distinct = false;
+  for (int i = points - report.rateWindow + 1; i < points; ++i)
+    distinct = distinct || nv[i] != nv[points - report.rateWindow];
+  const bool positive = std::all_of(le.end() - report.rateWindow, le.end(), [](double e) { return e > 0; });
+  if (points >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
+  if (points >= 2 && distinct && exact) {
+    report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
+    report.h1Rate = logLogSlope(nv, h1, report.rateWindow);
+    report.l2InterpRate = logLogSlope(nv, li, report.rateWindow);
+  }
+  report.errorsDecrease = n >= 2 && report.cycles.back().l2 < report.cycles.front().l2 &&
+                          report.cycles.back().h1 < report.cycles.front().h1;
+}
 }  // namespace
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
@@ -132,6 +165,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.triangles = current.mesh.numTriangles();
     row.tMesh = tMesh;
     row.predictedVertices = current.stats.placement.predictedNodes;
+    row.meshStats = current.stats;
     const auto q = metricQuality(current.mesh, current.metric);
     row.qMean = q.mean;
     row.qMin = q.min;
@@ -140,9 +174,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = watch.seconds();
+    row.tAssembly = sol.stats.assemblySeconds;
+    row.tOrdering = sol.stats.orderingSeconds;
+    row.tFactor = sol.stats.solveSeconds - sol.stats.orderingSeconds;
+    watch.restart();
     const fem::ErrorReport err = problem.exact
                                      ? fem::computeErrors(current.mesh, sol.u, *problem.exact, options.errorDegree)
                                      : fem::ErrorReport{kNaN, kNaN, kNaN, kNaN, {}, {}};
+    row.tErrors = problem.exact ? watch.seconds() : 0.0;
     row.l2 = err.l2;
     row.h1 = err.h1;
     row.l2Interp = err.l2Interp;
@@ -180,33 +219,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     tMesh = watch.seconds();
   }
 
-  const int n = int(report.cycles.size());
-  // The convergence curve: the last cycle of each target size.
-  std::vector<double> nv, l2, h1, li, le;
-  for (int k = 0; k < n; ++k) {
-    const auto& c = report.cycles[std::size_t(k)];
-    if (k + 1 < n && report.cycles[std::size_t(k) + 1].targetVertices == c.targetVertices) continue;
-    nv.push_back(double(c.vertices));
-    l2.push_back(c.l2);
-    h1.push_back(c.h1);
-    li.push_back(c.l2Interp);
-    le.push_back(c.l2InterpEstimate);
-  }
-  const int points = int(nv.size());
-  report.rateWindow = std::min(4, points);
-  report.l2Rate = report.h1Rate = report.l2InterpRate = report.l2InterpEstimateRate = kNaN;
-  bool distinct = false;
-  for (int i = points - report.rateWindow + 1; i < points; ++i)
-    distinct = distinct || nv[i] != nv[points - report.rateWindow];
-  const bool positive = std::all_of(le.end() - report.rateWindow, le.end(), [](double e) { return e > 0; });
-  if (points >= 2 && distinct && positive) report.l2InterpEstimateRate = logLogSlope(nv, le, report.rateWindow);
-  if (points >= 2 && distinct && problem.exact) {
-    report.l2Rate = logLogSlope(nv, l2, report.rateWindow);
-    report.h1Rate = logLogSlope(nv, h1, report.rateWindow);
-    report.l2InterpRate = logLogSlope(nv, li, report.rateWindow);
-  }
-  report.errorsDecrease = n >= 2 && report.cycles.back().l2 < report.cycles.front().l2 &&
-                          report.cycles.back().h1 < report.cycles.front().h1;
+  fitRates(report, problem.exact.has_value());
   return report;
 }
 

@@ -21,7 +21,9 @@
 /// that regions where u is linear still get a few elements across the domain).
 ///
 /// Row k of the report: vertices/triangles/errors/quality of mesh_k; t_mesh = time to build
-/// mesh_k, t_solve = assembly + solve on it, t_recover/t_metric = building M_k from u_k (0 in
+/// mesh_k, t_solve = assembly + solve on it (split into t_assembly, t_ordering, t_factor =
+/// CHOLMOD's analysis + factorisation + triangular solves), t_errors = the error norms against
+/// the exact solution (not part of t_solve), t_recover/t_metric = building M_k from u_k (0 in
 /// the last cycle, where no next mesh is built). Times are wall seconds (steady clock), the
 /// only non-deterministic numbers in the report.
 #include "ablmg/adapt/gradation.hpp"
@@ -90,21 +92,9 @@ struct AdaptOptions {
   /// error, and the peak's L2 error jumped by 2–7× between cycles (p = ∞, 5·10³–2·10⁴ vertices);
   /// with it the errors fall every cycle. The complexity is restored after grading (uniform rescale).
   double hgrad = 1.3;
-  /// The mesher's options for the loop. The initial lattice is turned so that one row of
-  /// bubbles runs along each node's short-size direction (LatticeOrientation::ShortAxis, the
-  /// Hessian's steep eigenvector): the P1 gradient error on a metric-equilateral triangle depends
-  /// on its orientation, and the bubble dynamics keeps the orientation it starts from. Placement
-  /// stops on the quality plateau (plateauSteps 10, plateauGain 0.01, mesher/place_nodes.hpp),
-  /// since metrics from a solver rarely let the bubble residual settle. No defect annealing
-  /// (mesher/defects.hpp): it does not lower the FE error. Measured: docs/method.md.
-  mesher::MeshOptions mesh = [] {
-    mesher::MeshOptions m;
-    m.placement.lattice.orientation = mesher::LatticeOrientation::ShortAxis;
-    m.placement.plateauSteps = 10;
-    m.placement.plateauGain = 0.01;
-    m.placement.defectPasses = 0;  // see above
-    return m;
-  }();
+  /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
+  /// short-size direction, plateau stop, no defect annealing; the reasons are there).
+  mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
   fem::SolveOptions solve;
   int errorDegree = 8;  ///< quadrature degree of the error norms (fem/error_norms.hpp)
   /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.
@@ -138,7 +128,10 @@ struct CycleReport {
   double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
-  long predictedVertices = 0;  ///< the mesher's estimate N* for mesh_k
+  double tAssembly = 0, tOrdering = 0, tFactor = 0;  ///< the parts of tSolve
+  double tErrors = 0;                                ///< computeErrors (0 without an exact solution)
+  mesher::MeshStats meshStats;                       ///< the mesher's statistics and stage times for mesh_k
+  long predictedVertices = 0;                        ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
 };
 

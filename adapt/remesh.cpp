@@ -1,4 +1,5 @@
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/adapt/metric_snap.hpp"
 
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
@@ -7,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace ablmg::adapt {
 namespace {
@@ -32,6 +34,8 @@ void validate(const RemeshOptions& o) {
   ABLMG_REQUIRE(o.hmax > o.hmin, "remesh options: hmax must be > hmin, got hmax " << o.hmax << ", hmin " << o.hmin);
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "remesh options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
+  ABLMG_REQUIRE(std::isfinite(o.metricQuantum) && o.metricQuantum >= 0,
+                "remesh options: metricQuantum must be >= 0 (0 = off), got " << o.metricQuantum);
 }
 
 namespace {
@@ -62,8 +66,9 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
     ABLMG_REQUIRE(v.ok, name << ": invalid mesh: " << v.firstProblem);
     r.secondsValidate = watch.seconds();
   }
-  // 1. Sizes clamped to [hmin, hmax].
+  // 1. Sizes clamped to [hmin, hmax] (after the snap to a grid, when asked for).
   watch.restart();
+  if (options.metricQuantum > 0) snapMetrics(metric, options.metricQuantum);
   r.clampedMetrics = clampSizes(metric, options.hmin, options.hmax);
   r.secondsClamp = watch.seconds();
   // 2. Gradation: sizes grow by at most ≈ hgrad per unit metric length along the input edges.
@@ -118,7 +123,13 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
                           const mesher::MeshOptions& options) {
   const BackgroundMetricField field(mesh, std::move(metric));
-  return mesher::meshDomain(domain, field, options);
+  const bool subdomains =
+      !mesh.interfaceEdges.empty() || std::adjacent_find(mesh.triangleRefs.begin(), mesh.triangleRefs.end(),
+                                                         std::not_equal_to<>()) != mesh.triangleRefs.end();
+  if (!subdomains) return mesher::meshDomain(domain, field, options);
+  RemeshResult r;  // the subdomains and interfaces are the mesh's: remeshed from it
+  remeshSubdomains(field.mesh(), field, options, "mesh", r);
+  return {std::move(r.mesh), std::move(r.metric), r.stats};
 }
 
 }  // namespace ablmg::adapt

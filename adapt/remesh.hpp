@@ -59,19 +59,14 @@ struct RemeshOptions {
   /// switch (AdaptOptions::warmStart, off).
   enum class WarmStart { Off, IfFits, On };
   WarmStart warmStart = WarmStart::IfFits;
-  /// The mesher's options. The seed is mesh.placement.seed, the lattice orientation
-  /// mesh.placement.lattice.orientation (Axes; ShortAxis suits Hessian metrics, see
-  /// AdaptOptions::mesh). Placement stops on the quality plateau (plateauSteps 10,
-  /// plateauGain 0.01, mesher/place_nodes.hpp): graded metrics rarely let the residual settle.
-  /// No final relaxation after the stop (finalRelaxSteps 0; `ablmg mesh` runs 10): its 10 steps
-  /// cost 12 % of the remesh time for +0.4 point of edges within ±10 % (docs/method.md).
-  mesher::MeshOptions mesh = [] {
-    mesher::MeshOptions m;
-    m.placement.plateauSteps = 10;
-    m.placement.plateauGain = 0.01;
-    m.placement.finalRelaxSteps = 0;
-    return m;
-  }();
+  /// > 0: the input metric is first snapped to a grid of this step (metric_snap.hpp), so that
+  /// metrics differing by round-off (a distributed solver's) give the same mesh; 0: used as
+  /// given (default; the meshes of `ablmg remesh`).
+  double metricQuantum = 0;
+  /// The mesher's options: the Remesh preset (mesher/mesher.hpp: plateau stop, no final
+  /// relaxation). The seed is mesh.placement.seed, the lattice orientation
+  /// mesh.placement.lattice.orientation.
+  mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Remesh);
 };
 
 /// Throws InputError "remesh options: <field> ..." naming the field and value.
@@ -134,7 +129,10 @@ void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, con
 
 /// meshDomain(domain, BackgroundMetricField(mesh, metric), options): remeshing a domain the
 /// caller knows exactly (e.g. a curved boundary, which the input mesh only approximates).
-/// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop.
+/// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop. A mesh with
+/// subdomains (several triangle refs, or interface edges) is remeshed subdomain by subdomain
+/// (remeshSubdomains): refs, interfaces and slits kept, the boundary then taken from `mesh`
+/// (its polyline), not from `domain`.
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
                           const mesher::MeshOptions& options = {});
 

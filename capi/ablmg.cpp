@@ -7,6 +7,7 @@
 #include "ablmg/capi/ablmg.h"
 
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/adapt/transfer.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/mesher/quality.hpp"
 
@@ -35,12 +36,13 @@ struct ablmg_handle {
   std::vector<ablmg::Metric2> metric;
   bool haveVertices = false, haveTriangles = false, haveEdges = false, haveMetric = false;
   // Options (ablmg remesh's defaults).
-  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3;
-  long long seed = 1;
+  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, metricQuantum = 0;
+  long long seed = 0;
   int threads = 0;
   ablmg::adapt::RemeshOptions::WarmStart warmStart = ablmg::adapt::RemeshOptions::WarmStart::IfFits;
-  // Last result and message.
+  // Last result, the mesh it was made from (the transfer's source), and the message.
   std::optional<ablmg::adapt::RemeshResult> result;
+  std::optional<ablmg::Mesh2> source;
   std::optional<ablmg::mesher::MeshQuality> quality;
   std::string error;
 };
@@ -322,9 +324,14 @@ int ablmg_set_double(ablmg_t* h, ablmg_option option, double value) {
           fail(ABLMG_ERR_ARGUMENT, "hgrad = ", value, " must be > 1 (or <= 0 to disable the gradation)");
         h->hgrad = value;
         break;
+      case ABLMG_METRIC_QUANTUM:
+        if (!std::isfinite(value) || value < 0)
+          fail(ABLMG_ERR_ARGUMENT, "metric quantum = ", value, " must be finite and >= 0 (0: off)");
+        h->metricQuantum = value;
+        break;
       default:
         fail(ABLMG_ERR_ARGUMENT, "option ", optionCode(option),
-             " is not a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD)");
+             " is not a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD, ABLMG_METRIC_QUANTUM)");
     }
   });
 }
@@ -358,6 +365,7 @@ int ablmg_remesh(ablmg_t* h) {
   return guarded(h, "ablmg_remesh", [&] {
     h->result.reset();
     h->quality.reset();
+    h->source.reset();
     ablmg::Mesh2 mesh = inputMesh(*h);
     // What `ablmg remesh` sets (cli/cmd_remesh.cpp); the rest are RemeshOptions' defaults.
     ablmg::adapt::RemeshOptions options;
@@ -369,12 +377,15 @@ int ablmg_remesh(ablmg_t* h) {
     options.mesh.placement.threads = h->threads;
     options.mesh.connect.threads = h->threads;
     options.warmStart = h->warmStart;
+    options.metricQuantum = h->metricQuantum;
     ablmg::adapt::validate(options);
     const ablmg::MeshValidation check = mesh.validate();
     if (!check.ok) fail(ABLMG_ERR_INVALID_MESH, "input: invalid mesh: ", check.firstProblem);
     options.inputCheck = ablmg::BackgroundMetricField::MeshCheck::AlreadyValidated;
     const ThreadScope threads(h->threads);
+    ablmg::Mesh2 source = mesh;
     h->result = ablmg::adapt::remesh(std::move(mesh), h->metric, options);
+    h->source = std::move(source);
   });
 }
 
@@ -467,6 +478,51 @@ int ablmg_get_quality(ablmg_t* h, ablmg_quality* out) {
     s.graded_metrics = int(r.gradation.corrections);
     s.repaired_triangles = int(r.stats.connect.repairedTriangles);
     *out = s;
+  });
+}
+
+int ablmg_transfer(ablmg_t* h, const double* oldFields, int nOld, int nfields, int method, double* newFields, int nNew,
+                   ablmg_transfer_stats* stats) {
+  return guarded(h, "ablmg_transfer", [&] {
+    const auto& r = resultOf(*h);
+    const ablmg::Mesh2& source = *h->source;
+    requirePointer(oldFields, "old_fields");
+    requirePointer(newFields, "new_fields");
+    if (nOld != source.numVertices())
+      fail(ABLMG_ERR_ARGUMENT, "n_old = ", nOld, " is not the ", source.numVertices(),
+           " vertices of the mesh the last remesh read");
+    requireResultCount(nNew, r.mesh.numVertices(), "vertices");
+    requireCount(nfields, 1, kMaxCount / std::max(1, std::max(nOld, nNew)), "nfields");
+    if (method < ABLMG_TRANSFER_INTERPOLATION || method > ABLMG_TRANSFER_PROJECTION_BOUNDED)
+      fail(ABLMG_ERR_ARGUMENT, "method = ", method,
+           " is not an ablmg_transfer_method (0 interpolation, 1 projection, 2 bounded projection)");
+    std::vector<Eigen::VectorXd> fields(static_cast<std::size_t>(nfields));
+    for (int f = 0; f < nfields; ++f) {
+      fields[std::size_t(f)] = Eigen::Map<const Eigen::VectorXd>(oldFields + std::size_t(f) * std::size_t(nOld), nOld);
+      for (int i = 0; i < nOld; ++i)
+        if (!std::isfinite(fields[std::size_t(f)][i]))
+          fail(ABLMG_ERR_INPUT, "field ", f, " at vertex ", i, " is ", fields[std::size_t(f)][i], ", not finite");
+    }
+    ablmg::adapt::TransferOptions options;
+    options.method = method == ABLMG_TRANSFER_INTERPOLATION ? ablmg::adapt::TransferMethod::Interpolation
+                                                            : ablmg::adapt::TransferMethod::L2Projection;
+    options.boundPreserving = method == ABLMG_TRANSFER_PROJECTION_BOUNDED;
+    ablmg::adapt::TransferStats st;
+    const ThreadScope threads(h->threads);
+    const std::vector<Eigen::VectorXd> out = ablmg::adapt::transferFields(source, r.mesh, fields, options, &st);
+    for (int f = 0; f < nfields; ++f)
+      std::copy(out[std::size_t(f)].data(), out[std::size_t(f)].data() + nNew,
+                newFields + std::size_t(f) * std::size_t(nNew));
+    if (stats) {
+      ablmg_transfer_stats s{};
+      s.supermesh_pieces = st.supermeshPieces;
+      s.supermesh_area = st.supermeshArea;
+      s.outside_vertices = st.outsideVertices;
+      s.solver_iterations = st.solverIterations;
+      s.relative_mass_defect = st.maxRelativeMassDefect();
+      s.seconds = st.seconds;
+      *stats = s;
+    }
   });
 }
 

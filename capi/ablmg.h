@@ -78,6 +78,13 @@
  *
  * A solver loop sets the new arrays (and the metric of its next solution) on the same handle
  * and calls ablmg_remesh again; every setter replaces what it sets and keeps the options.
+ * Between the two, ablmg_transfer carries the solver's fields (P1, one value per vertex) from
+ * the mesh the last ablmg_remesh read to its result:
+ *
+ *   double* u_new = malloc(sizeof(double) * nv);
+ *   ablmg_transfer_stats s;
+ *   rc = ablmg_transfer(h, u_old, 4, 1, ABLMG_TRANSFER_PROJECTION, u_new, nv, &s);
+ *   // s.relative_mass_defect ~ 1e-15: the integral of u is kept
  */
 #ifndef ABLMG_CAPI_ABLMG_H
 #define ABLMG_CAPI_ABLMG_H
@@ -116,17 +123,48 @@ typedef enum ablmg_option {
   ABLMG_HGRAD = 3,  /**< double, default 1.3 (MMG's): size gradation beta > 1 after the clamp
                          (metric-space, adapt/gradation.hpp); <= 0 (MMG's -1) disables it;
                          (0, 1] is refused */
-  ABLMG_SEED = 4,   /**< int >= 0, default 1: the placement's seed
-                         (mesher::PlacementOptions::seed), the `--seed` of `ablmg remesh`;
-                         the same seed gives the same mesh */
+  ABLMG_SEED = 4,   /**< int >= 0, default 0: the placement's seed
+                         (mesher::PlacementOptions::seed), the `--seed` of `ablmg remesh`:
+                         0 places the nodes as the lattice and warm start put them; s > 0
+                         first moves each interior node by a draw of (s, node) within 0.1
+                         metric units, giving another mesh of the same statistics. The same
+                         seed gives the same mesh */
   ABLMG_THREADS = 5, /**< int >= 0, default 0 (OpenMP's default): threads of the remesh; the
                          result does not depend on it. The caller's OpenMP setting is
                          restored when ablmg_remesh returns. */
-  ABLMG_WARM_START = 6 /**< int, default 2 (auto): 1 seeds the placement with the input's
+  ABLMG_WARM_START = 6, /**< int, default 2 (auto): 1 seeds the placement with the input's
                          interior vertices, 0 starts from the lattice, 2 does the first when the
                          input already fits its metric (half its edges within 10 %), as
                          `ablmg remesh --warm-start auto|on|off` */
+  ABLMG_METRIC_QUANTUM = 7 /**< double >= 0, default 0 (off): snap the metric to a grid of this
+                         step first (log2 of its eigenvalues, its angle; adapt/metric_snap.hpp),
+                         so that metrics differing by round-off, e.g. from 1 and 2 MPI ranks,
+                         give the same mesh; 2^-8 changes sizes by < 0.07 %. `ablmg remesh
+                         --metric-quantum Q` */
 } ablmg_option;
+
+/** Solution transfer methods (ablmg_transfer; adapt/transfer.hpp). */
+typedef enum ablmg_transfer_method {
+  ABLMG_TRANSFER_INTERPOLATION = 0, /**< the old field at each new vertex (located in the old
+                                         mesh; outside it, at the closest boundary point):
+                                         exact for linear fields, not conservative */
+  ABLMG_TRANSFER_PROJECTION = 1,    /**< conservative L2 projection on the supermesh of the two
+                                         meshes: keeps the integral to round-off, exact for
+                                         linear fields; may overshoot the old field's range */
+  ABLMG_TRANSFER_PROJECTION_BOUNDED = 2 /**< the projection clipped to the old field's
+                                         [min, max], the clipped mass given back where there
+                                         is room: in range and conservative */
+} ablmg_transfer_method;
+
+/** What a transfer did (ablmg_transfer). */
+typedef struct ablmg_transfer_stats {
+  long supermesh_pieces;        /**< non-empty old/new triangle intersections (projections) */
+  double supermesh_area;        /**< their total area (= the domain's when both cover it) */
+  long outside_vertices;        /**< new vertices outside the old mesh (interpolation) */
+  int solver_iterations;        /**< conjugate-gradient iterations, largest over the fields */
+  double relative_mass_defect;  /**< max over fields of |int u_new - int u_old| / int |u_old| */
+  double seconds;               /**< wall time */
+} ablmg_transfer_stats;
 
 /** The opaque handle: input arrays, options, the last result and the last error message. */
 typedef struct ablmg_handle ablmg_t;
@@ -170,7 +208,8 @@ int ablmg_set_edges(ablmg_t* handle, const int* edges, const int* refs, int k, i
 int ablmg_set_metric(ablmg_t* handle, const double* m, int n);
 /** The metric as a size per vertex: h[n] > 0, M = I / h² (a medit .sol of type 1). */
 int ablmg_set_sizes(ablmg_t* handle, const double* h, int n);
-/** Sets a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD); checked here and at remesh. */
+/** Sets a double option (ABLMG_HMIN, ABLMG_HMAX, ABLMG_HGRAD, ABLMG_METRIC_QUANTUM); checked
+ * here and at remesh. */
 int ablmg_set_double(ablmg_t* handle, ablmg_option option, double value);
 /** Sets an integer option (ABLMG_SEED, ABLMG_THREADS). */
 int ablmg_set_int(ablmg_t* handle, ablmg_option option, long long value);
@@ -193,6 +232,19 @@ int ablmg_get_edges(ablmg_t* handle, int* edges, int* refs, int k, int base);
 int ablmg_get_metric(ablmg_t* handle, double* m, int n);
 /** Its quality in that metric (and what the remesh changed); see ablmg_quality. */
 int ablmg_get_quality(ablmg_t* handle, ablmg_quality* quality);
+
+/** Transfers nfields P1 fields from the mesh the last successful ablmg_remesh read (its
+ * n_old vertices, as set then: later setters do not change it) to that remesh's result (its
+ * n_new vertices, ablmg_get_sizes). Field-major arrays, as a Fortran u(n, nfields):
+ *   old_fields double[nfields * n_old]   field f at input vertex i: old_fields[f * n_old + i]
+ *   new_fields double[nfields * n_new]   (written) field f at result vertex i: new_fields[f * n_new + i]
+ * method: an ablmg_transfer_method (passed as an int). stats may be NULL. Errors:
+ * ABLMG_ERR_STATE before a successful remesh; ABLMG_ERR_ARGUMENT for n_old not the input's
+ * vertex count, nfields < 1 or a method out of range; ABLMG_ERR_CAPACITY for n_new not the
+ * result's; ABLMG_ERR_INPUT for a value that is not finite (naming field and vertex). On an
+ * error new_fields is left as it was. Deterministic for any thread count. */
+int ablmg_transfer(ablmg_t* handle, const double* old_fields, int n_old, int nfields, int method,
+                   double* new_fields, int n_new, ablmg_transfer_stats* stats);
 
 #ifdef __cplusplus
 }

@@ -67,7 +67,8 @@ struct Args {
   adapt::ScheduleOptions schedule;
   std::string outDir = "adapt_out";
   bool uniform = true, vtu = true, medit = false;
-  int verbosity = 1;  ///< -v N: 0 = no progress line
+  int verbosity = 1;          ///< -v N: 0 = no progress line
+  bool printOptions = false;  ///< --print-options: print the options in effect and exit
 };
 
 Args parseArgs(const std::vector<std::string>& args) {
@@ -152,6 +153,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.verbosity = int(parseInteger(value(), "adapt: -v", 0, 10));
     } else if (key == "--out-dir") {
       a.outDir = value();
+    } else if (key == "--print-options") {
+      a.printOptions = true;
     } else if (!key.empty() && key[0] != '-') {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
@@ -162,14 +165,14 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
-                           "--plateau-gain --uniform --vtu --medit --out-dir)");
+                           "--plateau-gain --uniform --vtu --medit --out-dir --print-options)");
     }
   }
-  ABLMG_REQUIRE(a.problem.empty() != a.config.empty(),
+  ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
                 "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
   ABLMG_REQUIRE(a.config.empty() || a.params.empty(),
                 "adapt: --param is for --problem NAME; a config gives \"params\"");
-  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0,
+  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0 || a.printOptions,
                 "adapt: --vertices N (the default schedule) or --target-vertices N1,N2,... is required");
   ABLMG_REQUIRE(!(haveTargets && a.finalVertices > 0), "adapt: give --vertices N or --target-vertices, not both");
   if (a.finalVertices > 0) a.options.targetVertices = adapt::geometricSchedule(a.finalVertices, a.schedule);
@@ -237,14 +240,35 @@ Problem configProblem(const std::string& path) {
   return p;
 }
 
-/// True when structuredMesh can grid the domain (axis-parallel sides).
+/// True when structuredMesh can grid the domain (axis-parallel sides, no slits).
 bool uniformFits(const Domain& domain) {
+  if (domain.hasSlits()) return false;
   for (const auto& loop : domain.loops())
     for (std::size_t k = 0; k < loop.points.size(); ++k) {
       const Vec2 d = loop.points[(k + 1) % loop.points.size()] - loop.points[k];
       if (d.x() != 0 && d.y() != 0) return false;
     }
   return true;
+}
+
+/// The loop's options as the JSON report gives them ("options").
+nlohmann::json loopOptionsJson(const Args& a, int cycles) {
+  return {{"target_vertices", a.options.targetVertices},
+          {"cycles", cycles},
+
+          {"hessian", adapt::toString(a.options.hessian)},
+          {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
+          {"norm", adapt::toString(a.options.metric.norm)},
+          {"shape_blend",
+           a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
+          {"hmin", a.options.metric.hmin},
+          {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
+          {"max_anisotropy", a.options.metric.maxAnisotropy},
+          {"hgrad", a.options.hgrad},
+          {"warm_start", a.options.warmStart},
+          {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
+          {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
+          {"seed", a.options.mesh.placement.seed}};
 }
 
 const char* kAdaptHelp =
@@ -255,6 +279,7 @@ const char* kAdaptHelp =
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
+                   [--print-options]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
 fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.json's own:
@@ -273,7 +298,10 @@ Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessia
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
 length gains less than G in 10 steps (default 0.01, as ablmg remesh; 0 = run to the residual
 or stall rule: ~1/3 more remesh time, errors a few % lower; adapt/adaptive_loop.hpp).
--v N: 0 = no progress line on stderr (shown on a terminal only; default 1).
+-v N: 0 = no progress line on stderr (shown on a terminal only; default 1); >= 2 also the mesher's stage
+times for each cycle's mesh.
+--print-options: print the options in effect (JSON: the loop's and the mesher's, the "adapt"
+preset with the flags above applied) and exit; the problem and the schedule may be omitted.
 )";
 
 int runAdapt(const std::vector<std::string>& argv) {
@@ -283,6 +311,10 @@ int runAdapt(const std::vector<std::string>& argv) {
       return 0;
     }
   Args a = parseArgs(argv);
+  if (a.printOptions) {
+    printEffectiveOptions("adapt", "adapt", a.options.mesh, loopOptionsJson(a, int(a.options.targetVertices.size())));
+    return 0;
+  }
   const Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
   const bool exact = problem.data.exact.has_value();
   namespace fs = std::filesystem;
@@ -313,8 +345,27 @@ int runAdapt(const std::vector<std::string>& argv) {
     std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
     if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
     std::printf(" est=%.3e", r.l2InterpEstimate);
-    std::printf(" q=%.3f/%.3f  t: solve %.2fs recover %.2fs metric %.2fs mesh %.2fs\n", r.qMean, r.qMin, r.tSolve,
-                r.tRecover, r.tMetric, r.tMesh);
+    std::printf(
+        " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
+        "metric %.2fs mesh %.2fs\n",
+        r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
+    if (a.verbosity >= 2) {
+      const auto& p = r.meshStats.placement;
+      std::printf(
+          "  mesh %d: placement %.2fs (initial %.2f, dynamics %.2f in %d steps%s, adjacency %.2f, population "
+          "%.2f: +%ld -%ld), connection %.2fs, quality post-pass %.2fs (q min %.3f -> %.3f, %ld swaps, %ld "
+          "moves, %ld collapses), validation %.2fs\n",
+          r.cycle, p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation, p.secondsInitial,
+          p.secondsDynamics, p.steps,
+          p.qualityPlateau ? " (quality plateau)"
+          : p.stalled      ? " (stalled)"
+          : p.hitStepCap   ? " (step cap)"
+                           : "",
+          p.secondsAdjacency, p.secondsPopulation, p.inserted, p.deleted,
+          r.meshStats.connect.secondsLocalMeshes + r.meshStats.connect.secondsRepair, r.meshStats.improve.seconds,
+          r.meshStats.improve.qMinBefore, r.meshStats.improve.qMinAfter, long(r.meshStats.improve.swaps),
+          long(r.meshStats.improve.moves), long(r.meshStats.improve.collapses), r.meshStats.secondsValidate);
+    }
     std::fflush(stdout);
     if (a.vtu) {
       const int n = c.mesh.numVertices();
@@ -359,35 +410,22 @@ int runAdapt(const std::vector<std::string>& argv) {
 
   // 4. Reports: CSV, JSON.
   io::writeFileAtomically((fs::path(a.outDir) / "convergence.csv").string(), [&](std::ostream& os) {
-    os << kCsvHeader << ",target_vertices,max_vertex_error,predicted_vertices,l2_interp_estimate\n";
+    os << kCsvHeader
+       << ",target_vertices,max_vertex_error,predicted_vertices,l2_interp_estimate,t_assembly,t_ordering,t_factor,"
+          "t_errors\n";
     os.precision(10);
     for (const auto& r : report.cycles)
       os << r.cycle << ',' << r.vertices << ',' << r.triangles << ',' << r.l2 << ',' << r.h1 << ',' << r.l2Interp << ','
          << r.qMean << ',' << r.qMin << ',' << r.tSolve << ',' << r.tRecover << ',' << r.tMetric << ',' << r.tMesh
          << ',' << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << ',' << r.l2InterpEstimate
-         << '\n';
+         << ',' << r.tAssembly << ',' << r.tOrdering << ',' << r.tFactor << ',' << r.tErrors << '\n';
   });
   auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
   nlohmann::json j;
   j["problem"] = problem.name;
   j["definition"] = problem.echo;
   if (!a.config.empty()) j["config"] = a.config;
-  j["options"] = {
-      {"target_vertices", a.options.targetVertices},
-      {"cycles", int(report.cycles.size())},
-      {"hessian", adapt::toString(a.options.hessian)},
-      {"p", std::isinf(a.options.metric.p) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.p)},
-      {"norm", adapt::toString(a.options.metric.norm)},
-      {"shape_blend",
-       a.options.metric.shapeBlend ? nlohmann::json(*a.options.metric.shapeBlend) : nlohmann::json(nullptr)},
-      {"hmin", a.options.metric.hmin},
-      {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
-      {"max_anisotropy", a.options.metric.maxAnisotropy},
-      {"hgrad", a.options.hgrad},
-      {"warm_start", a.options.warmStart},
-      {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
-      {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
-      {"seed", a.options.mesh.placement.seed}};
+  j["options"] = loopOptionsJson(a, int(report.cycles.size()));
   for (const auto& r : report.cycles)
     j["cycles"].push_back({{"cycle", r.cycle},
                            {"vertices", r.vertices},
@@ -401,6 +439,10 @@ int runAdapt(const std::vector<std::string>& argv) {
                            {"q_mean", r.qMean},
                            {"q_min", r.qMin},
                            {"t_solve", r.tSolve},
+                           {"t_assembly", r.tAssembly},
+                           {"t_ordering", r.tOrdering},
+                           {"t_factor", r.tFactor},
+                           {"t_errors", r.tErrors},
                            {"t_recover", r.tRecover},
                            {"t_metric", r.tMetric},
                            {"t_mesh", r.tMesh}});
@@ -426,7 +468,7 @@ int runAdapt(const std::vector<std::string>& argv) {
     curves.back().y.push_back(r.l2InterpEstimate);
   }
   if (a.uniform && exact && !uniformFits(problem.data.domain)) {
-    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel)\n");
+    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel, or slits)\n");
   } else if (a.uniform && exact) {
     io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
     for (const auto& r : report.cycles) {

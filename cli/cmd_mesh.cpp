@@ -26,6 +26,7 @@ namespace {
 
 const char* kHelp =
     R"(usage: ablmg mesh CONFIG.json [-o OUT.{mesh,vtu,png}]... [--bubbles-only] [--report R.json] [--seed N] [--max-nodes N] [-v N]
+       ablmg mesh [CONFIG.json] [--seed N] [--max-nodes N] --print-options
 
 Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/config.md).
   -o PATH          output, format by extension (repeatable; adds to the config's "outputs"):
@@ -36,6 +37,8 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
   --max-nodes N    refuse (before allocating) a metric asking for more than N nodes
                    (options.placement.maxNodes; default 50 000 000)
   -v N             0: no progress line on stderr (shown on a terminal only; default 1)
+  --print-options  print the mesher options in effect (JSON: the preset, options.preset of the
+                   config or "mesh", and every field) and exit; without CONFIG.json, the defaults
   -h, --help       this text
 )";
 
@@ -66,7 +69,7 @@ void noteCrowdedCorners(const Domain& domain, const MetricField& field) {
 int runMesh(const std::vector<std::string>& args) {
   std::string configPath, reportPath;
   std::vector<std::string> outputs;
-  bool bubblesOnly = false;
+  bool bubblesOnly = false, printOptions = false;
   long long seed = -1, maxNodes = -1;
   int verbosity = 1;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -85,6 +88,8 @@ int runMesh(const std::vector<std::string>& args) {
       reportPath = value();
     } else if (a == "--bubbles-only") {
       bubblesOnly = true;
+    } else if (a == "--print-options") {
+      printOptions = true;
     } else if (a == "--seed") {
       seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
     } else if (a == "-v") {
@@ -98,13 +103,18 @@ int runMesh(const std::vector<std::string>& args) {
       configPath = a;
     }
   }
-  ABLMG_REQUIRE(!configPath.empty(), "missing CONFIG.json (see ablmg mesh --help)");
+  ABLMG_REQUIRE(!configPath.empty() || printOptions, "missing CONFIG.json (see ablmg mesh --help)");
 
   // 1. Configuration; the command line overrides it.
-  Config cfg = loadConfig(configPath);
+  Config cfg;
+  if (!configPath.empty()) cfg = loadConfig(configPath);
   if (seed >= 0) cfg.options.placement.seed = std::uint64_t(seed);
   if (maxNodes > 0) cfg.options.placement.maxNodes = long(maxNodes);
   if (bubblesOnly) cfg.options.placement.bubblesOnly = true;
+  if (printOptions) {
+    printEffectiveOptions("mesh", cfg.preset, cfg.options, {{"config", configPath}});
+    return 0;
+  }
   for (const auto* o : {&cfg.outputs.mesh, &cfg.outputs.vtu, &cfg.outputs.png})
     if (!o->empty()) outputs.push_back(*o);
   if (reportPath.empty()) reportPath = cfg.outputs.report;

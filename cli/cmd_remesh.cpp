@@ -54,7 +54,13 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    >= 2 also the time of every phase (read, gradation, domain, background
                    field, placement, connection, quality post-pass, validation, write);
                    a progress line on stderr if it is a terminal, unless -v is 0 or -1
-  --seed N         placement seed (default 1)
+  --metric-quantum Q  snap the metric to a grid of step Q first (0 = off, the default; e.g.
+                   0.00390625 = 2^-8): metrics differing by round-off give the same mesh
+                   (adapt/metric_snap.hpp)
+  --print-options  print the options in effect (JSON: these flags and the mesher's, the
+                   "remesh" preset) and exit; -in is then not needed
+  --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
+                   the same statistics, the same for the same N
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
                    along each node's short-size direction: lower FE errors for Hessian
                    metrics, see docs/method.md), long
@@ -106,9 +112,10 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
 
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
-  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0;
+  double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0, metricQuantum = 0;
   int verbose = 1, metField = 0;
-  long long seed = 1;
+  bool printOptions = false;
+  long long seed = 0;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -152,21 +159,27 @@ int runRemesh(const std::vector<std::string>& args) {
                                : adapt::RemeshOptions::WarmStart::IfFits;
     } else if (a == "--report")
       reportPath = value();
-    else if (!a.empty() && a[0] == '-')
+    else if (a == "--print-options")
+      printOptions = true;
+    else if (a == "--metric-quantum") {
+      metricQuantum = parseNumber(value(), "remesh: " + a);
+      ABLMG_REQUIRE(metricQuantum >= 0, "remesh: --metric-quantum must be >= 0 (0 = off), got " << metricQuantum);
+    } else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
       ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
       in = a;  // mmg2d also takes the input as a positional argument
     }
   }
-  ABLMG_REQUIRE(!in.empty(), "missing -in IN.mesh (see ablmg remesh --help)");
+  ABLMG_REQUIRE(!in.empty() || printOptions, "missing -in IN.mesh (see ablmg remesh --help)");
   ABLMG_REQUIRE(hmin >= 0 && hmin < hmax, "need 0 <= hmin < hmax, got hmin " << hmin << ", hmax " << hmax);
   ABLMG_REQUIRE(seed >= 0, "--seed must be >= 0");
   const std::filesystem::path inPath(in);
-  if (sol.empty()) sol = std::filesystem::path(in).replace_extension(".sol").string();
-  if (out.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
-  ABLMG_REQUIRE(std::filesystem::path(out).extension() == ".mesh", "-out '" << out << "' must end in .mesh");
-  const std::string outSol = std::filesystem::path(out).replace_extension(".sol").string();
+  if (sol.empty() && !in.empty()) sol = std::filesystem::path(in).replace_extension(".sol").string();
+  if (out.empty() && !in.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
+  ABLMG_REQUIRE(printOptions || std::filesystem::path(out).extension() == ".mesh",
+                "-out '" << out << "' must end in .mesh");
+  const std::string outSol = out.empty() ? "" : std::filesystem::path(out).replace_extension(".sol").string();
   ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
                 "--report must not be the output mesh or .sol");
 
@@ -178,6 +191,7 @@ int runRemesh(const std::vector<std::string>& args) {
   options.mesh.placement.seed = std::uint64_t(seed);
   options.mesh.placement.lattice.orientation = lattice;
   options.warmStart = warmStart;
+  options.metricQuantum = metricQuantum;
   nlohmann::json resolved;
   {
     resolved = {{"in", in},
@@ -193,8 +207,15 @@ int runRemesh(const std::vector<std::string>& args) {
                                                                                   : "auto"},
                 {"metField", metField},
                 {"hsiz", hsiz},
+                {"metricQuantum", metricQuantum},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
+    if (printOptions) {
+      nlohmann::json own = resolved;
+      own.erase("options");
+      printEffectiveOptions("remesh", "remesh", options.mesh, own);
+      return 0;
+    }
     if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   }
   ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);

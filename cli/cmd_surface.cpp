@@ -14,7 +14,7 @@
 //                "u": [-1, 1], "v": [-1, 1],                      over [u0,u1]×[v0,v1];
 //                "weld": false},                                   true: weld the sides that r maps
 //                                                                  onto each other (periodic r)
-//    "h": 0.05, "seed": 1,
+//    "h": 0.05, "seed": 0,
 //    "options": {"placement": {...}, "connect": {...}}}         as in `ablmg mesh` configs
 // Errors are exceptions (one line, exit 1); output paths are checked before meshing and the
 // files are written only once the mesh exists, each atomically.
@@ -66,7 +66,10 @@ meshed with M2 = J^T M3 J (eq. 16) for the isotropic 3D size H (eq. 17), then ma
   --png-param PNG  the parameter-space mesh coloured by Lee's quality
   --png-3d PNG     a shaded view of the 3D mesh (orthographic, Lambert shading)
   --json R.json    report: options, counts, quality distribution, edge lengths, manifold check, times
-  --seed N         placement seed (default 1)
+  --print-options  print the options in effect (JSON: surface, h and the mesher's, the "mesh"
+                   preset with the config's options) and exit; no output is needed
+  --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
+                   the same statistics, the same for the same N
   -v N             0: no progress line on stderr (shown on a terminal only; default 1)
 )";
 
@@ -83,8 +86,9 @@ struct SurfaceSetup {
   std::unique_ptr<mesher::ParametricSurface> surface;
   std::string name;
   double h = 0;
-  long long seed = 1;
+  long long seed = 0;
   mesher::MeshOptions options;
+  std::string preset = "mesh";  ///< options.preset of the config, else "mesh"
 };
 
 /// Reads a surface config (see the header comment); errors name the file and key path.
@@ -154,7 +158,10 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
                   path << ": seed: expected an integer >= 0");
     s.seed = j["seed"].get<long long>();
   }
-  if (j.contains("options")) applyMeshOptions(j["options"], s.options, path + ": options");
+  if (j.contains("options")) {
+    applyMeshOptions(j["options"], s.options, path + ": options");
+    if (j["options"].contains("preset")) s.preset = j["options"]["preset"].get<std::string>();
+  }
   return s;
 }
 
@@ -163,6 +170,7 @@ int runSurface(const std::vector<std::string>& args) {
   double h = 0;
   long long seed = -1;
   int verbosity = 1;
+  bool printOptions = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -195,6 +203,8 @@ int runSurface(const std::vector<std::string>& args) {
       verbosity = int(parseInteger(value(), "surface: -v", 0, 10));
     } else if (a == "--seed") {
       seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
+    } else if (a == "--print-options") {
+      printOptions = true;
     } else if (!a.empty() && a[0] != '-' && configPath.empty()) {
       configPath = a;
     } else {
@@ -203,8 +213,8 @@ int runSurface(const std::vector<std::string>& args) {
   }
   ABLMG_REQUIRE(name.empty() != configPath.empty(),
                 "surface: give either --surface NAME or CONFIG.json (ablmg surface --list, --help)");
-  ABLMG_REQUIRE(!meshPath.empty() || !vtuPath.empty() || !stlPath.empty() || !pngPath.empty() || !png3dPath.empty() ||
-                    !jsonPath.empty(),
+  ABLMG_REQUIRE(printOptions || !meshPath.empty() || !vtuPath.empty() || !stlPath.empty() || !pngPath.empty() ||
+                    !png3dPath.empty() || !jsonPath.empty(),
                 "surface: no output (give -o OUT.mesh, --vtu, --stl, --png-param, --png-3d or --json)");
   if (!meshPath.empty()) checkOutput(meshPath, ".mesh", "-o");
   if (!vtuPath.empty()) checkOutput(vtuPath, ".vtu", "--vtu");
@@ -222,6 +232,12 @@ int runSurface(const std::vector<std::string>& args) {
   }
   if (h > 0) setup.h = h;
   if (seed >= 0) setup.seed = seed;
+  if (printOptions) {
+    setup.options.placement.seed = std::uint64_t(setup.seed);
+    printEffectiveOptions("surface", setup.preset, setup.options,
+                          {{"surface", setup.name}, {"h", setup.h}, {"config", configPath}});
+    return 0;
+  }
   ABLMG_REQUIRE(setup.h > 0, "surface: --h H is required" << (configPath.empty() ? "" : " (or \"h\" in the config)"));
   const mesher::Metric3Field m3 = mesher::isotropicMetric3(setup.h);
   const mesher::InducedMetricField m2(*setup.surface, m3);

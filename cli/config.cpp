@@ -9,6 +9,7 @@
 #include <limits>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <set>
 #include <sstream>
 #include <variant>
@@ -174,9 +175,44 @@ json bindingsToJson(const S& s, const std::vector<Binding<S>>& bindings) {
   return j;
 }
 
+Domain parseDomain(const json& j, const Where& w, const std::string& baseDir);
+
+/// "slits": [{"points": [[x, y], ...], "tags": [left, right]}, ...] added to `d` in order
+/// (Domain::withSlit: attached where points[0] is on the boundary, else free).
+Domain applySlits(Domain d, const json& S, const Where& ws) {
+  requireType(S, S.is_array(), "array of slits {\"points\": [[x, y], ...], \"tags\": [left, right]}", ws);
+  for (std::size_t k = 0; k < S.size(); ++k) {
+    const Where wk = ws[k];
+    requireObject(S[k], wk);
+    checkKeys(S[k], {"points", "tags"}, wk);
+    ABLMG_REQUIRE(S[k].contains("points"), wk.str() << ": points: missing (required)");
+    const json& P = S[k]["points"];
+    requireType(P, P.is_array() && P.size() >= 2, "array of ≥ 2 points [x, y]", wk / "points");
+    std::vector<Vec2> pts;
+    for (std::size_t i = 0; i < P.size(); ++i) pts.push_back(getPoint(P[i], (wk / "points")[i]));
+    int tags[2] = {1, 1};
+    if (S[k].contains("tags")) {
+      const json& T = S[k]["tags"];
+      requireType(T, T.is_array() && T.size() == 2 && T[0].is_number_integer() && T[1].is_number_integer(),
+                  "[left, right] (two integers)", wk / "tags");
+      tags[0] = T[0].get<int>();
+      tags[1] = T[1].get<int>();
+    }
+    try {
+      d = d.withSlit(pts, tags[0], tags[1]);
+    } catch (const InputError& e) { throw InputError(wk.str() + ": " + e.what()); }
+  }
+  return d;
+}
+
 Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
   requireObject(j, w);
   ABLMG_REQUIRE(!j.empty(), w.str() << ": empty; expected one of rectangle, disk, poly, loops");
+  if (j.contains("slits")) {
+    json rest = j;
+    rest.erase("slits");
+    return applySlits(parseDomain(rest, w, baseDir), j["slits"], w / "slits");
+  }
   if (j.contains("rectangle")) {
     checkKeys(j, {"rectangle"}, w);
     const Where wr = w / "rectangle";
@@ -321,7 +357,18 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
   const Where w =
       colon == std::string::npos ? Where{where, ""} : Where{where.substr(0, colon), where.substr(colon + 2)};
   requireObject(j, w);
-  checkKeys(j, {"placement", "connect", "improve"}, w);
+  checkKeys(j, {"preset", "placement", "connect", "improve"}, w);
+  if (j.contains("preset")) {  // the named configuration first (mesher/mesher.hpp), then the fields
+    const Where wp = w / "preset";
+    const std::string name = getString(j["preset"], wp);
+    mesher::MeshOptions base;
+    try {
+      base = mesher::meshPreset(mesher::parseMeshPreset(name));
+    } catch (const InputError& e) { ABLMG_REQUIRE(false, wp.str() << ": " << e.what()); }
+    base.progress = std::move(options.progress);
+    base.progressEvery = options.progressEvery;
+    options = std::move(base);
+  }
   if (j.contains("placement")) {
     // The numeric fields by binding; the lattice orientation is the one string-valued field.
     json placement = j["placement"];
@@ -354,6 +401,18 @@ void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, con
       mesher::requireValid(options.improve);
     } catch (const InputError& e) { ABLMG_REQUIRE(false, (w / "improve").str() << ": " << e.what()); }
   }
+}
+
+void printEffectiveOptions(const std::string& command, const std::string& preset, const mesher::MeshOptions& options,
+                           const nlohmann::json& commandOptions) {
+  json out = {{"command", command}};
+  if (commandOptions.is_object())
+    for (const auto& [k, v] : commandOptions.items()) out[k] = v;
+  json mesh = {{"preset", preset}};
+  const json fields = meshOptionsToJson(options);
+  for (const auto& [k, v] : fields.items()) mesh[k] = v;
+  out["options"] = std::move(mesh);
+  std::cout << out.dump(2) << "\n";
 }
 
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options) {
@@ -405,7 +464,10 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
   ABLMG_REQUIRE(j.contains("metric"), name << ": metric: missing (required)");
   Config c;
   // Cheap checks first: options and outputs before reading any file.
-  if (j.contains("options")) applyMeshOptions(j["options"], c.options, name + ": options");
+  if (j.contains("options")) {
+    applyMeshOptions(j["options"], c.options, name + ": options");
+    if (j["options"].contains("preset")) c.preset = j["options"]["preset"].get<std::string>();
+  }
   if (j.contains("outputs")) {
     const Where wo = top / "outputs";
     const json& o = requireObject(j["outputs"], wo);

@@ -42,6 +42,7 @@ struct Config {
   std::unique_ptr<MetricField> metric;
   std::string metricDescription;  ///< one line, e.g. "analytic sizes h1=0.1 h2=0.1 theta=0"
   mesher::MeshOptions options;
+  std::string preset = "mesh";  ///< options.preset in the file, else "mesh" (mesher::MeshPreset)
   ConfigOutputs outputs;
 };
 
@@ -60,10 +61,19 @@ std::unique_ptr<MetricField> loadMetricConfig(const std::string& path, std::stri
 /// messages read "FILE: domain.<key>: ...".
 Domain parseDomainJson(const nlohmann::json& j, const std::string& file, const std::string& baseDir);
 
-/// Fills `options` from a JSON object {"placement": {...}, "connect": {...}}; `where` prefixes
-/// messages (e.g. "config.json: options").
+/// Fills `options` from a JSON object {"preset": "mesh"|"remesh"|"adapt", "placement": {...},
+/// "connect": {...}, "improve": {...}}: the preset (mesher/mesher.hpp) replaces `options` first
+/// (its progress callback kept), then the fields given override it. `where` prefixes messages
+/// (e.g. "config.json: options").
 void applyMeshOptions(const nlohmann::json& j, mesher::MeshOptions& options, const std::string& where);
 /// Every option with its value (defaults included), same layout as applyMeshOptions reads.
 nlohmann::json meshOptionsToJson(const mesher::MeshOptions& options);
+
+/// `--print-options`: writes to stdout, indented,
+///   {"command": COMMAND, <command's own options>..., "options": {"preset": PRESET, <every
+///   mesher field as meshOptionsToJson>}}
+/// The "options" object read back by applyMeshOptions (a config's "options") gives `options`.
+void printEffectiveOptions(const std::string& command, const std::string& preset, const mesher::MeshOptions& options,
+                           const nlohmann::json& commandOptions);
 
 }  // namespace ablmg::cli

@@ -6,7 +6,7 @@
 # ablmgTargets (the ones linking muparser, VTK, cairo, CHOLMOD, nlohmann_json, and the
 # umbrella ablmg::ablmg), so that find_package(ablmg COMPONENTS remesh) looks for nothing heavy.
 include(CMakePackageConfigHelpers)
-set(ABLMG_LIGHT_LIBRARIES ablmg_core ablmg_medit ablmg_mesher ablmg_remesh)
+set(ABLMG_LIGHT_LIBRARIES ablmg_core ablmg_medit ablmg_mesher ablmg_p1 ablmg_remesh)
 if(TARGET ablmg_capi)
   list(APPEND ABLMG_LIGHT_LIBRARIES ablmg_capi)
 endif()
@@ -38,7 +38,7 @@ install(FILES ${PROJECT_BINARY_DIR}/ablmgConfig.cmake ${PROJECT_BINARY_DIR}/ablm
 
 # pkg-config: the light libraries (what a remeshing solver links), last-needed last.
 set(ABLMG_PC_LIBS)
-foreach(_lib ablmg_capi ablmg_remesh ablmg_mesher ablmg_medit ablmg_core)
+foreach(_lib ablmg_capi ablmg_remesh ablmg_mesher ablmg_p1 ablmg_medit ablmg_core)
   if(_lib IN_LIST ABLMG_LIGHT_LIBRARIES)
     string(APPEND ABLMG_PC_LIBS " -l${_lib}")
   endif()

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace ablmg {
 namespace {
@@ -41,6 +42,22 @@ void reverseLoop(BoundaryLoop& loop) {
 }
 
 const char* loopName(std::size_t l) { return l == 0 ? "outer loop" : "hole"; }
+
+/// The points that loop visits more than once (the ends and inner points of its slits), sorted.
+std::vector<Vec2> repeatedPoints(const BoundaryLoop& loop) {
+  std::vector<Vec2> pts = loop.points, out;
+  const auto less = [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); };
+  std::sort(pts.begin(), pts.end(), less);
+  for (std::size_t k = 1; k < pts.size(); ++k)
+    if (pts[k] == pts[k - 1] && (out.empty() || out.back() != pts[k])) out.push_back(pts[k]);
+  return out;
+}
+
+bool isRepeated(const std::vector<Vec2>& repeated, const Vec2& p) {
+  return std::binary_search(repeated.begin(), repeated.end(), p, [](const Vec2& a, const Vec2& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+}
 
 }  // namespace
 
@@ -169,6 +186,84 @@ std::vector<int> Domain::corners(int l) const {
   return out;
 }
 
+bool Domain::hasSlits() const {
+  return std::any_of(loops_.begin(), loops_.end(), [](const BoundaryLoop& l) { return !repeatedPoints(l).empty(); });
+}
+
+Domain Domain::withSlit(const std::vector<Vec2>& pts, int tagLeft, int tagRight) const {
+  ABLMG_REQUIRE(pts.size() >= 2, "domain: a slit needs at least 2 points (got " << pts.size() << ")");
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    ABLMG_REQUIRE(std::isfinite(pts[k].x()) && std::isfinite(pts[k].y()),
+                  "domain: slit point " << k << " has a non-finite coordinate");
+    ABLMG_REQUIRE(k == 0 || pts[k] != pts[k - 1], "domain: slit point " << k << " repeats point " << k - 1);
+  }
+  const auto where = [&](std::size_t k) {
+    std::ostringstream os;
+    os << "domain: slit point " << k << " (" << pts[k].x() << ", " << pts[k].y() << ")";
+    return os.str();
+  };
+  for (std::size_t k = 0; k + 1 < pts.size(); ++k)
+    ABLMG_REQUIRE(contains(0.5 * (pts[k] + pts[k + 1])), where(k) << ": the slit leaves the domain after this point");
+  // Where points[0] lies on a loop: a point of it, or inside one of its segments.
+  int al = -1, ak = -1;
+  bool onPoint = false;
+  for (std::size_t l = 0; l < loops_.size() && al < 0; ++l) {
+    const auto& p = loops_[l].points;
+    for (std::size_t k = 0; k < p.size() && al < 0; ++k) {
+      const Vec2 &a = p[k], &b = p[(k + 1) % p.size()];
+      onPoint = a == pts[0];
+      if (onPoint || (orient2d(a, b, pts[0]) == 0 && (pts[0] - a).dot(b - a) > 0 && (pts[0] - b).dot(a - b) > 0)) {
+        al = int(l);
+        ak = int(k);
+      }
+    }
+  }
+  std::vector<BoundaryLoop> loops = loops_;
+  const std::size_t n = pts.size();
+  if (al < 0) {  // free: a hole along the slit and back (a midpoint if it has one segment)
+    std::vector<Vec2> q = pts;
+    if (n == 2) q.insert(q.begin() + 1, 0.5 * (pts[0] + pts[1]));
+    BoundaryLoop hole;
+    hole.points = q;
+    hole.tags.assign(q.size() - 1, tagLeft);
+    hole.tags.push_back(tagRight);  // from the end back
+    for (std::size_t k = q.size() - 2; k >= 1; --k) {
+      hole.points.push_back(q[k]);
+      hole.tags.push_back(tagRight);
+    }
+    loops.push_back(std::move(hole));
+  } else {
+    BoundaryLoop& loop = loops[std::size_t(al)];
+    const std::size_t m = loop.points.size(), k = std::size_t(ak);
+    if (loop.fixedPoints.empty()) loop.fixedPoints.assign(m, 0);
+    if (loop.keptSegments.empty()) loop.keptSegments.assign(m, 0);
+    BoundaryLoop out;
+    out.smooth = loop.smooth;
+    const auto add = [&](const Vec2& p, int tag, char fixed, char kept) {
+      out.points.push_back(p);
+      out.tags.push_back(tag);
+      out.fixedPoints.push_back(fixed);
+      out.keptSegments.push_back(kept);
+    };
+    for (std::size_t i = 0; i <= k; ++i)
+      add(loop.points[i], i == k && onPoint ? tagLeft : loop.tags[i], loop.fixedPoints[i],
+          i == k ? 0 : loop.keptSegments[i]);
+    if (!onPoint) add(pts[0], tagLeft, 1, 0);
+    for (std::size_t i = 1; i < n; ++i) add(pts[i], i + 1 < n ? tagLeft : tagRight, 0, 0);
+    for (std::size_t i = n - 2; i >= 1; --i) add(pts[i], tagRight, 0, 0);
+    add(pts[0], loop.tags[k], 1, 0);
+    for (std::size_t i = k + 1; i < m; ++i)
+      add(loop.points[i], loop.tags[i], loop.fixedPoints[i], loop.keptSegments[i]);
+    if (onPoint) out.fixedPoints[k] = 1;
+    loop = std::move(out);
+  }
+  BoundaryLoop outer = std::move(loops.front());
+  loops.erase(loops.begin());
+  try {
+    return Domain(std::move(outer), std::move(loops));
+  } catch (const InputError& e) { throw InputError(where(n - 1) + " (the tip): " + e.what()); }
+}
+
 void Domain::validate() const {
   struct Seg {
     double xmin, xmax;
@@ -192,6 +287,8 @@ void Domain::validate() const {
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
   std::sort(order.begin(), order.end(),
             [&](int i, int j) { return segs[i].xmin < segs[j].xmin || (segs[i].xmin == segs[j].xmin && i < j); });
+  std::vector<std::vector<Vec2>> repeated(loops_.size());
+  for (std::size_t l = 0; l < loops_.size(); ++l) repeated[l] = repeatedPoints(loops_[l]);
   for (std::size_t oi = 0; oi < order.size(); ++oi) {
     const Seg& s = segs[order[oi]];
     for (std::size_t oj = oi + 1; oj < order.size() && segs[order[oj]].xmin <= s.xmax; ++oj) {
@@ -199,7 +296,14 @@ void Domain::validate() const {
       const int n = int(loops_[s.loop].points.size());
       const bool neighbours = s.loop == t.loop && ((s.index + 1) % n == t.index || (t.index + 1) % n == s.index);
       bool bad;
-      if (neighbours) {
+      const auto& rep = repeated[std::size_t(s.loop)];
+      const bool gapPair = s.loop == t.loop && s.a == t.b && s.b == t.a;  // the two lips of a slit
+      const bool meetAtRepeated = s.loop == t.loop && !rep.empty() &&
+                                  ((isRepeated(rep, s.a) && (s.a == t.a || s.a == t.b)) ||
+                                   (isRepeated(rep, s.b) && (s.b == t.a || s.b == t.b)));
+      if (gapPair) {
+        bad = false;
+      } else if (neighbours || meetAtRepeated) {
         // consecutive segments share one point; they must not fold back onto each other
         bad = segmentsCross(s.a, s.b, t.a, t.b);
       } else {

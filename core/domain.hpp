@@ -10,6 +10,13 @@
 /// boundary turns by more than 30°, and the fixedPoints and ends of keptSegments) are fixed
 /// mesh vertices; the mesher places its own boundary nodes along the polyline. Otherwise every
 /// point is a corner and a mesh vertex.
+/// Slits (cracks): a loop may run along a polyline and back, a zero-width gap. Its points then
+/// repeat (the two lips have distinct points at the same coordinates) and segment k is the
+/// reverse of another: a slit attached to the boundary is such a detour of the outer loop (or a
+/// hole's), a free slit a hole loop of zero area that runs along the crack and back. Both lips
+/// are boundary with their own tags, the slit's end inside the domain (the tip) is a corner.
+/// withSlit() builds them; meshDomain (mesher/mesher.hpp) meshes them with distinct vertices on
+/// the two lips.
 /// Units: the coordinates' own.
 #include "ablmg/core/vec2.hpp"
 
@@ -57,9 +64,21 @@ class Domain {
   /// Index lists of the corner points of loop l (all points unless the loop is smooth).
   std::vector<int> corners(int l) const;
 
+  /// This domain with a slit along `points` (≥ 2, distinct, every segment inside the domain):
+  /// when points[0] is on a loop (a point of it, or inside one of its segments, which is then
+  /// split there) the slit is attached there and points.back() is its tip; otherwise it is free
+  /// (a new hole loop of zero area, both ends tips). The lip on the left of points[0] →
+  /// points.back() gets tag `tagLeft`, the other `tagRight`. Throws InputError naming the point
+  /// for a slit that leaves the domain, crosses the boundary or another slit, or ends on it.
+  Domain withSlit(const std::vector<Vec2>& points, int tagLeft, int tagRight) const;
+  /// True when a loop has a zero-width gap (a slit).
+  bool hasSlits() const;
+
   /// Rejects: loops with < 3 points, non-finite coordinates, zero-length segments, duplicate
   /// points, self-intersections or intersections between loops, holes outside the outer loop,
-  /// tag vectors of the wrong size. The message names loop and segment index.
+  /// tag vectors of the wrong size. The message names loop and segment index. Allowed: the
+  /// zero-width gaps of slits (a segment whose exact reverse is in the same loop; segments of
+  /// one loop that meet only at a point the loop visits twice).
   void validate() const;
 
  private:

@@ -93,6 +93,7 @@ PointLocator::PointLocator(const Mesh2& mesh) : mesh_(mesh), neighbours_(neighbo
   cellNode_.assign(std::size_t(nx_) * ny_, -1);
   // A cell of a few triangles starts at its lowest triangle id; a crowded one (graded,
   // stretched meshes) gets a tree, encoded as −2 − root.
+  cellStart_ = start;
   for (std::size_t c = 0; c + 1 < start.size(); ++c) {
     if (start[c + 1] - start[c] > kLeafTriangles)
       cellNode_[c] = -2 - build(start[c], start[c + 1]);
@@ -173,34 +174,10 @@ int PointLocator::startTriangle(const Vec2& p) const {
   return 0;
 }
 
-PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
-  const bool fromHint = hint >= 0 && hint < mesh_.numTriangles();
-  int t = fromHint ? hint : startTriangle(p);
+int PointLocator::walk(int t, const Vec2& p, int cap, bool& atBoundary) const {
   int came = -1;
-  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
-  bool restarted = false;
-  for (int step = 0;; ++step) {
-    if (step > cap) {
-      // cycling walk (possible on non-Delaunay meshes): restart once from the grid, then scan
-      if (!restarted) {
-        restarted = true;
-        t = startTriangle(p);
-        came = -1;
-        step = 0;
-        continue;
-      }
-      for (int s = 0; s < mesh_.numTriangles(); ++s) {
-        const auto& tr = mesh_.triangles[s];
-        bool in = true;
-        for (int k = 0; k < 3 && in; ++k)
-          in = orient2d(mesh_.vertices[tr[(k + 1) % 3]], mesh_.vertices[tr[(k + 2) % 3]], p) >= 0;
-        if (in) {
-          t = s;
-          break;
-        }
-      }
-      break;
-    }
+  atBoundary = false;
+  for (int step = 0; step <= cap; ++step) {
     const auto& tr = mesh_.triangles[t];
     int exit = -1;
     for (int k = 0; k < 3; ++k) {
@@ -211,23 +188,25 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
         break;
       }
     }
-    if (exit < 0) break;  // p is inside (or on) triangle t
+    if (exit < 0) return t;  // p is inside (or on) triangle t
     if (neighbours_[t][exit] < 0) {
-      // Beyond a boundary edge. From a far hint the straight walk may have left a non-convex
-      // mesh (a re-entrant corner, a hole) although p is inside: walk again from the grid's
-      // start triangle, which is near p. Stopping there too means p is outside.
-      if (!restarted && fromHint) {
-        restarted = true;
-        t = startTriangle(p);
-        came = -1;
-        step = -1;
-        continue;
-      }
-      break;
+      atBoundary = true;
+      return t;
     }
     came = t;
     t = neighbours_[t][exit];
   }
+  return -1;  // cycling (possible on non-Delaunay meshes)
+}
+
+bool PointLocator::contains(int t, const Vec2& p) const {
+  const auto& tr = mesh_.triangles[t];
+  for (int k = 0; k < 3; ++k)
+    if (orient2d(mesh_.vertices[tr[(k + 1) % 3]], mesh_.vertices[tr[(k + 2) % 3]], p) < 0) return false;
+  return true;
+}
+
+PointLocator::Location PointLocator::clamped(int t, const Vec2& p) const {
   Location loc;
   loc.triangle = t;
   const auto& tr = mesh_.triangles[t];
@@ -241,6 +220,78 @@ PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
   for (double& x : w) s += (x = std::max(0.0, x));
   for (int k = 0; k < 3; ++k) loc.bary[k] = s > 0 ? w[k] / s : 1.0 / 3.0;
   return loc;
+}
+
+int PointLocator::acrossTheBoundary(const Vec2& p, int stopped) const {
+  // The walks stopped at a boundary edge. Either p is outside, or the straight walks left a
+  // non-convex mesh (a re-entrant corner) on their way to it. Candidates: the triangles bucketed
+  // in the 3 × 3 cells around p's cell (around the nearest non-empty cell if they are empty),
+  // at most kRescue of them spread over their list. One containing p wins; else a walk from
+  // each of a few; else p is outside and the stop whose clamped point is nearest p wins (the
+  // nearest boundary edge among them, not the one a far start happened to cross).
+  constexpr int kRescue = 64, kWalks = 8;
+  int i0 = clampedCell((p.x() - lo_.x()) / cellSize_.x(), nx_);
+  int j0 = clampedCell((p.y() - lo_.y()) / cellSize_.y(), ny_);
+  std::vector<int> cand;
+  for (int pass = 0; pass < 2 && cand.empty(); ++pass) {
+    if (pass == 1) {  // around the start triangle's cell
+      const Vec2& c = centroid_[std::size_t(stopped)];
+      i0 = clampedCell((c.x() - lo_.x()) / cellSize_.x(), nx_);
+      j0 = clampedCell((c.y() - lo_.y()) / cellSize_.y(), ny_);
+    }
+    int total = 0;
+    for (int j = std::max(j0 - 1, 0); j <= std::min(j0 + 1, ny_ - 1); ++j)
+      for (int i = std::max(i0 - 1, 0); i <= std::min(i0 + 1, nx_ - 1); ++i)
+        total += cellStart_[std::size_t(j) * nx_ + i + 1] - cellStart_[std::size_t(j) * nx_ + i];
+    const int stride = std::max(1, (total + kRescue - 1) / kRescue);
+    int k = 0;
+    for (int j = std::max(j0 - 1, 0); j <= std::min(j0 + 1, ny_ - 1); ++j)
+      for (int i = std::max(i0 - 1, 0); i <= std::min(i0 + 1, nx_ - 1); ++i)
+        for (int q = cellStart_[std::size_t(j) * nx_ + i]; q < cellStart_[std::size_t(j) * nx_ + i + 1]; ++q, ++k)
+          if (k % stride == 0) cand.push_back(order_[std::size_t(q)]);
+  }
+  for (const int t : cand)
+    if (contains(t, p)) return t;
+  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
+  int best = stopped;
+  double bestD = (clampedPoint(clamped(stopped, p)) - p).squaredNorm();
+  const int stride = std::max(1, int(cand.size()) / kWalks);
+  for (std::size_t k = 0; k < cand.size(); k += std::size_t(stride)) {
+    bool atBoundary = false;
+    const int t = walk(cand[k], p, cap, atBoundary);
+    if (t < 0) continue;
+    if (!atBoundary) return t;
+    const double d = (clampedPoint(clamped(t, p)) - p).squaredNorm();
+    if (d < bestD) {
+      bestD = d;
+      best = t;
+    }
+  }
+  return best;
+}
+
+Vec2 PointLocator::clampedPoint(const Location& loc) const {
+  Vec2 q = Vec2::Zero();
+  for (int k = 0; k < 3; ++k) q += loc.bary[k] * mesh_.vertices[mesh_.triangles[loc.triangle][k]];
+  return q;
+}
+
+PointLocator::Location PointLocator::locate(const Vec2& p, int hint) const {
+  const bool fromHint = hint >= 0 && hint < mesh_.numTriangles();
+  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
+  bool atBoundary = false;
+  int t = walk(fromHint ? hint : startTriangle(p), p, cap, atBoundary);
+  // From a far hint the straight walk may have left a non-convex mesh although p is inside, or
+  // cycled: walk again from the grid's start triangle, which is near p.
+  if (fromHint && (t < 0 || atBoundary)) t = walk(startTriangle(p), p, cap, atBoundary);
+  if (t < 0) {  // cycling from the grid too: scan
+    for (int s = 0; s < mesh_.numTriangles() && t < 0; ++s)
+      if (contains(s, p)) t = s;
+    if (t < 0) t = startTriangle(p);
+    atBoundary = !contains(t, p);
+  }
+  if (atBoundary) t = acrossTheBoundary(p, t);
+  return clamped(t, p);
 }
 
 }  // namespace ablmg

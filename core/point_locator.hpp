@@ -12,9 +12,13 @@
 /// without a hint); a uniform mesh's cells hold a triangle or two and cost as before. A visibility walk with exact orientation tests then moves
 /// to the containing triangle. Passing the previous answer as `hint`
 /// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query.
-/// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid.
-/// Points outside the mesh get the triangle of the boundary edge where the walk stopped and
-/// barycentric coordinates clamped to it (nearest-point extrapolation), with inside = false.
+/// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid. A
+/// walk from the grid that stops there too (its straight line left the mesh through a notch: the
+/// start triangle of a cell straddling a re-entrant corner lies across it) is checked against
+/// the triangles of the 3 × 3 cells around p and redone from a few of them, so a point inside is
+/// found inside whatever the triangle order. Points outside the mesh get the boundary triangle,
+/// among those walks' stops, whose clamped point is nearest, and barycentric coordinates clamped
+/// to it (nearest-point extrapolation), with inside = false.
 /// The mesh must outlive the locator and must be valid (Mesh2::validate).
 #include "ablmg/core/mesh2.hpp"
 
@@ -36,8 +40,15 @@ class PointLocator {
 
  private:
   int startTriangle(const Vec2& p) const;
-  int build(int lo, int hi);                         ///< k-d tree of order_[lo, hi); returns its root
-  int nearestInTree(int root, const Vec2& p) const;  ///< the start triangle from one cell's tree
+  /// Visibility walk from t towards p: the triangle holding p, or the one whose boundary edge p
+  /// lies beyond (atBoundary), or −1 after `cap` steps (a cycle).
+  int walk(int t, const Vec2& p, int cap, bool& atBoundary) const;
+  bool contains(int t, const Vec2& p) const;                ///< exact orientation tests
+  Location clamped(int t, const Vec2& p) const;             ///< barycentrics clamped to t
+  Vec2 clampedPoint(const Location& loc) const;             ///< the point they weight
+  int acrossTheBoundary(const Vec2& p, int stopped) const;  ///< walks that stopped at the boundary
+  int build(int lo, int hi);                                ///< k-d tree of order_[lo, hi); returns its root
+  int nearestInTree(int root, const Vec2& p) const;         ///< the start triangle from one cell's tree
   const Mesh2& mesh_;
   std::vector<std::array<int, 3>> neighbours_;
   /// k-d tree node: an inner node splits at `split` along `axis` (children left, right); a
@@ -51,7 +62,8 @@ class PointLocator {
   std::vector<Vec2> centroid_;  ///< per triangle
   Vec2 lo_, cellSize_;
   int nx_ = 1, ny_ = 1;
-  std::vector<int> cellNode_;  ///< per cell: start triangle (≥ 0), tree root r as −2 − r, −1 if empty
+  std::vector<int> cellStart_;  ///< cell c's triangles are order_[cellStart_[c], cellStart_[c + 1])
+  std::vector<int> cellNode_;   ///< per cell: start triangle (≥ 0), tree root r as −2 − r, −1 if empty
 };
 
 }  // namespace ablmg

@@ -65,7 +65,7 @@ class HoleLayerMetric final : public MetricField {
 struct Options {
   double scale = 1;
   std::string out = "ex03_holes";
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 0;
 };
 
 Options parse(int argc, char** argv) {

@@ -87,14 +87,79 @@ std::vector<char> dirichletVertices(const Mesh2& mesh, const PoissonProblem& pro
   return is;
 }
 
-LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
-  const int nv = mesh.numVertices(), nt = mesh.numTriangles();
-  ABLMG_REQUIRE(nt > 0, "assemble: the mesh has no triangles");
-  requireSize(problem.kappa, mesh, "kappa");
-  requireSize(problem.f, mesh, "f");
-  for (const auto& [tag, data] : problem.neumann) requireSize(data, mesh, "Neumann data");
+namespace {
 
-  LinearSystem sys;
+/// ∫_T κ of triangle t (area `area`, vertices p): the rule for a function, the vertex mean
+/// for vertex values; κ must be positive (InputError naming the point or vertex otherwise).
+double kappaIntegral(const Mesh2& mesh, const PoissonProblem& problem, const TriangleRule& rule, int t,
+                     const Vec2 (&p)[3], double area) {
+  const auto& tri = mesh.triangles[t];
+  if (problem.kappa.isFunction()) {
+    double kappaInt = 0;
+    for (int q = 0; q < rule.size(); ++q) {
+      const auto& l = rule.points[q];
+      const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+      const double k = problem.kappa.fn(x.x(), x.y());
+      ABLMG_REQUIRE(k > 0 && std::isfinite(k), "assemble: kappa = " << k << " at (" << x.x() << ", " << x.y()
+                                                                    << ") in triangle " << t
+                                                                    << " (kappa must be positive: the system "
+                                                                       "would not be SPD)");
+      kappaInt += rule.weights[q] * k;
+    }
+    return kappaInt * area;
+  }
+  if (problem.kappa.isVertexValues()) {
+    const auto& kv = problem.kappa.vertexValues;
+    for (int v : tri)
+      ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]),
+                    "assemble: kappa = " << kv[v] << " at vertex " << v << " (kappa must be positive)");
+    return area * (kv[tri[0]] + kv[tri[1]] + kv[tri[2]]) / 3;
+  }
+  ABLMG_REQUIRE(
+      problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
+      "assemble: kappa = " << problem.kappa.constant << " (kappa must be positive: the system would not be SPD)");
+  return area * problem.kappa.constant;
+}
+
+/// The local stiffness and load of triangle t.
+void computeElement(const Mesh2& mesh, const PoissonProblem& problem, const TriangleRule& rule, int t, ElementData& d) {
+  const auto& tri = mesh.triangles[t];
+  const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
+  const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
+  ABLMG_REQUIRE(area > 0, "assemble: triangle " << t << " has non-positive area " << area);
+  const double kappaInt = kappaIntegral(mesh, problem, rule, t, p, area);
+  // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge; A_kl = ∫κ ∇λ_k·∇λ_l.
+  Vec2 e[3];
+  for (int k = 0; k < 3; ++k) {
+    const Vec2& a = p[(k + 1) % 3];
+    const Vec2& b = p[(k + 2) % 3];
+    e[k] = Vec2(a.y() - b.y(), b.x() - a.x());
+  }
+  const double scale = kappaInt / (4 * area * area);
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) d.a[k][l] = scale * e[k].dot(e[l]);
+  // ∫_T f λ_k
+  for (double& v : d.load) v = 0;
+  if (problem.f.isFunction()) {
+    for (int q = 0; q < rule.size(); ++q) {
+      const auto& l = rule.points[q];
+      const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+      const double fq = rule.weights[q] * problem.f.fn(x.x(), x.y());
+      for (int k = 0; k < 3; ++k) d.load[k] += fq * l[k];
+    }
+    for (double& v : d.load) v *= area;
+  } else if (problem.f.isVertexValues()) {
+    const auto& fv = problem.f.vertexValues;
+    const double s = fv[tri[0]] + fv[tri[1]] + fv[tri[2]];
+    for (int k = 0; k < 3; ++k) d.load[k] = area / 12 * (s + fv[tri[k]]);
+  } else {
+    for (double& v : d.load) v = problem.f.constant * area / 3;
+  }
+}
+
+/// Numbers the free (non-Dirichlet) vertices as dofs; fills the Dirichlet values.
+void numberDofs(const Mesh2& mesh, const PoissonProblem& problem, LinearSystem& sys) {
+  const int nv = mesh.numVertices();
   const std::vector<char> isDirichlet = dirichletVertices(mesh, problem, sys.dirichletValues);
   sys.dofOfVertex.assign(nv, -1);
   for (int v = 0; v < nv; ++v)
@@ -103,15 +168,18 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
       sys.vertexOfDof.push_back(v);
       sys.dofPoints.push_back(mesh.vertices[v]);
     }
-  const int n = int(sys.vertexOfDof.size());
-  sys.numDirichletVertices = nv - n;
+  sys.numDirichletVertices = nv - int(sys.vertexOfDof.size());
   ABLMG_REQUIRE(sys.numDirichletVertices > 0,
                 "assemble: no boundary vertex has Dirichlet data (no tag of the mesh's "
                     << mesh.boundaryEdges.size()
                     << " boundary edges is Dirichlet): the pure Neumann system is singular");
   requireDirichletInEveryPiece(mesh, isDirichlet);
+}
 
-  // 1. Sparsity pattern: column d holds the free vertices sharing a triangle with vertex d.
+/// 1. Sparsity pattern: column d holds the free vertices sharing a triangle with vertex d;
+/// values 0, b = 0.
+void buildPattern(const Mesh2& mesh, LinearSystem& sys) {
+  const int n = int(sys.vertexOfDof.size());
   const Mesh2::VertexTriangles vt = mesh.vertexTriangles();
   std::vector<int> outer(n + 1, 0), inner;
   inner.reserve(std::size_t(n) * 7);
@@ -133,113 +201,59 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
   std::copy(inner.begin(), inner.end(), sys.A.innerIndexPtr());
   std::fill(sys.A.valuePtr(), sys.A.valuePtr() + inner.size(), 0.0);
   sys.b = Eigen::VectorXd::Zero(n);
+}
 
-  // 2. Element loop: local stiffness and load, scattered into the pattern. Local data are
-  //    computed in blocks (in parallel when the problem's functions allow it), then scattered
-  //    serially in triangle order, so the result is bitwise the same for any thread count.
+/// Adds one element's data into the pattern and the load (Dirichlet columns lifted to b).
+void scatterElement(const std::array<int, 3>& tri, const ElementData& d, LinearSystem& sys) {
+  double* values = sys.A.valuePtr();
+  const int* outer = sys.A.outerIndexPtr();
+  for (int k = 0; k < 3; ++k) {
+    const int dk = sys.dofOfVertex[tri[k]];
+    if (dk < 0) continue;
+    sys.b[dk] += d.load[k];
+    const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
+    const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
+    for (int l = 0; l < 3; ++l) {
+      const int dl = sys.dofOfVertex[tri[l]];
+      if (dl < 0) {
+        sys.b[dk] -= d.a[k][l] * sys.dirichletValues[tri[l]];  // lifting
+        continue;
+      }
+      const int* it = std::find(rowBegin, rowEnd, dl);
+      ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
+      values[it - sys.A.innerIndexPtr()] += d.a[k][l];
+    }
+  }
+}
+
+/// 2. Element loop: local stiffness and load, scattered into the pattern. Local data are
+///    computed in blocks (in parallel when the problem's functions allow it), then scattered
+///    serially in triangle order, so the result is bitwise the same for any thread count.
+void assembleElements(const Mesh2& mesh, const PoissonProblem& problem, LinearSystem& sys) {
+  const int nt = mesh.numTriangles();
   const TriangleRule& rule = triangleRule(5);
-  const auto computeElement = [&](int t, ElementData& d) {
-    const auto& tri = mesh.triangles[t];
-    const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
-    const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
-    ABLMG_REQUIRE(area > 0, "assemble: triangle " << t << " has non-positive area " << area);
-    // ∫_T κ
-    double kappaInt;
-    if (problem.kappa.isFunction()) {
-      kappaInt = 0;
-      for (int q = 0; q < rule.size(); ++q) {
-        const auto& l = rule.points[q];
-        const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-        const double k = problem.kappa.fn(x.x(), x.y());
-        ABLMG_REQUIRE(k > 0 && std::isfinite(k), "assemble: kappa = " << k << " at (" << x.x() << ", " << x.y()
-                                                                      << ") in triangle " << t
-                                                                      << " (kappa must be positive: the system "
-                                                                         "would not be SPD)");
-        kappaInt += rule.weights[q] * k;
-      }
-      kappaInt *= area;
-    } else if (problem.kappa.isVertexValues()) {
-      const auto& kv = problem.kappa.vertexValues;
-      for (int v : tri)
-        ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]),
-                      "assemble: kappa = " << kv[v] << " at vertex " << v << " (kappa must be positive)");
-      kappaInt = area * (kv[tri[0]] + kv[tri[1]] + kv[tri[2]]) / 3;
-    } else {
-      ABLMG_REQUIRE(
-          problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
-          "assemble: kappa = " << problem.kappa.constant << " (kappa must be positive: the system would not be SPD)");
-      kappaInt = area * problem.kappa.constant;
-    }
-    // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge; A_kl = ∫κ ∇λ_k·∇λ_l.
-    Vec2 e[3];
-    for (int k = 0; k < 3; ++k) {
-      const Vec2& a = p[(k + 1) % 3];
-      const Vec2& b = p[(k + 2) % 3];
-      e[k] = Vec2(a.y() - b.y(), b.x() - a.x());
-    }
-    const double scale = kappaInt / (4 * area * area);
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) d.a[k][l] = scale * e[k].dot(e[l]);
-    // ∫_T f λ_k
-    for (double& v : d.load) v = 0;
-    if (problem.f.isFunction()) {
-      for (int q = 0; q < rule.size(); ++q) {
-        const auto& l = rule.points[q];
-        const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-        const double fq = rule.weights[q] * problem.f.fn(x.x(), x.y());
-        for (int k = 0; k < 3; ++k) d.load[k] += fq * l[k];
-      }
-      for (double& v : d.load) v *= area;
-    } else if (problem.f.isVertexValues()) {
-      const auto& fv = problem.f.vertexValues;
-      const double s = fv[tri[0]] + fv[tri[1]] + fv[tri[2]];
-      for (int k = 0; k < 3; ++k) d.load[k] = area / 12 * (s + fv[tri[k]]);
-    } else {
-      for (double& v : d.load) v = problem.f.constant * area / 3;
-    }
-  };
-
   constexpr int kBlock = 16384;  // block data stay in cache for the serial scatter
   std::vector<ElementData> block(std::min(nt, kBlock));
   const bool parallel = problem.threadSafeFunctions && nt >= 2 * kBlock;
-  double* values = sys.A.valuePtr();
   for (int t0 = 0; t0 < nt; t0 += kBlock) {
     const int t1 = std::min(nt, t0 + kBlock);
     int failed = 0;
 #pragma omp parallel for schedule(static) reduction(+ : failed) if (parallel)
     for (int t = t0; t < t1; ++t) {
       try {
-        computeElement(t, block[t - t0]);
+        computeElement(mesh, problem, rule, t, block[t - t0]);
       } catch (...) {  // exceptions must not leave the parallel region
         ++failed;
       }
     }
     if (failed)  // again, serially: throws the first error, as a serial loop would
-      for (int t = t0; t < t1; ++t) computeElement(t, block[t - t0]);
-    for (int t = t0; t < t1; ++t) {
-      const auto& tri = mesh.triangles[t];
-      const ElementData& d = block[t - t0];
-      for (int k = 0; k < 3; ++k) {
-        const int dk = sys.dofOfVertex[tri[k]];
-        if (dk < 0) continue;
-        sys.b[dk] += d.load[k];
-        const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
-        const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
-        for (int l = 0; l < 3; ++l) {
-          const int dl = sys.dofOfVertex[tri[l]];
-          if (dl < 0) {
-            sys.b[dk] -= d.a[k][l] * sys.dirichletValues[tri[l]];  // lifting
-            continue;
-          }
-          const int* it = std::find(rowBegin, rowEnd, dl);
-          ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
-          values[it - sys.A.innerIndexPtr()] += d.a[k][l];
-        }
-      }
-    }
+      for (int t = t0; t < t1; ++t) computeElement(mesh, problem, rule, t, block[t - t0]);
+    for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys);
   }
+}
 
-  // 3. Neumann flux on non-Dirichlet boundary edges: ∫_e g_N λ_k ds.
+/// 3. Neumann flux on non-Dirichlet boundary edges: ∫_e g_N λ_k ds.
+void addNeumann(const Mesh2& mesh, const PoissonProblem& problem, LinearSystem& sys) {
   for (const auto& be : mesh.boundaryEdges) {
     const auto it = problem.neumann.find(be.ref);
     if (it == problem.neumann.end() || problem.dirichlet.count(be.ref)) continue;
@@ -263,6 +277,20 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
     if (sys.dofOfVertex[be.a] >= 0) sys.b[sys.dofOfVertex[be.a]] += ga;
     if (sys.dofOfVertex[be.b] >= 0) sys.b[sys.dofOfVertex[be.b]] += gb;
   }
+}
+
+}  // namespace
+
+LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
+  ABLMG_REQUIRE(mesh.numTriangles() > 0, "assemble: the mesh has no triangles");
+  requireSize(problem.kappa, mesh, "kappa");
+  requireSize(problem.f, mesh, "f");
+  for (const auto& [tag, data] : problem.neumann) requireSize(data, mesh, "Neumann data");
+  LinearSystem sys;
+  numberDofs(mesh, problem, sys);
+  buildPattern(mesh, sys);
+  assembleElements(mesh, problem, sys);
+  addNeumann(mesh, problem, sys);
   return sys;
 }
 

@@ -13,10 +13,17 @@ extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 namespace ablmg::fem {
 namespace {
 
-/// OpenBLAS's threaded dpotrf rounds differently for each thread count, so the factorisation
-/// always runs with this many BLAS threads: the same bits whatever OMP_NUM_THREADS or
-/// OPENBLAS_NUM_THREADS say (this machine has 2 cores).
-constexpr int kBlasThreads = 2;
+/// The factorisation runs with one BLAS thread, whatever OMP_NUM_THREADS or
+/// OPENBLAS_NUM_THREADS say. Two reasons:
+///  - OpenBLAS's threaded dpotrf rounds differently for each thread count: one fixed count
+///    gives the same bits on every machine;
+///  - CHOLMOD's supernodal factorisation of a 2-D P1 matrix is thousands of small BLAS calls
+///    (the largest front at 10⁶ unknowns is a few thousand columns). OpenBLAS's pthread pool
+///    wakes and spins (sched_yield) on each call, and on a loaded machine or next to the
+///    mesher's OpenMP threads a call waits for a descheduled helper: the factorisation of a
+///    33k-unknown adapted mesh took 10–30 s wall in the adaptive loop on a shared 2-core
+///    machine, 60 % of its samples in the kernel's scheduler, for 0.26 GFlop.
+constexpr int kBlasThreads = 1;
 
 void fixBlasThreads() {
   if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);

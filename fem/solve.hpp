@@ -15,7 +15,9 @@
 ///
 /// Determinism: the same system gives the same bits for any OMP_NUM_THREADS /
 /// OPENBLAS_NUM_THREADS — our OpenMP loops sum in a fixed order, and the factorisation always
-/// runs OpenBLAS with 2 threads (its threaded dpotrf rounds differently per thread count).
+/// runs OpenBLAS with 1 thread (its threaded dpotrf rounds differently per thread count, and
+/// its thread pool spins on each of the supernodal factorisation's many small calls: on a
+/// loaded machine that made the solve 10–100× slower; fem/solve.cpp).
 ///
 /// Errors (InputError, with the reason): the system is not SPD or is singular — κ ≤ 0, no
 /// Dirichlet boundary (pure Neumann), a mesh piece without Dirichlet vertex (from assemble()),

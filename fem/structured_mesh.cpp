@@ -33,6 +33,7 @@ Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, 
   ABLMG_REQUIRE(perturbation >= 0 && perturbation <= 0.2,
                 "structuredMesh: perturbation = " << perturbation << " outside [0, 0.2]");
   ABLMG_REQUIRE(!domain.loops().empty(), "structuredMesh: empty domain");
+  ABLMG_REQUIRE(!domain.hasSlits(), "structuredMesh: the domain has slits (a grid cannot keep the lips apart)");
   // Named copies, not a structured binding: the vertex lambda below captures them, which
   // C++20 allows but clang 14 rejects.
   const auto box = domain.boundingBox();

@@ -20,7 +20,7 @@
 namespace ablmg::fem {
 
 /// Throws InputError if nx, ny < 1, perturbation ∉ [0, 0.2], a segment is not axis-parallel,
-/// or a domain point is not a grid node.
+/// a domain point is not a grid node, or the domain has slits.
 Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation = 0.0, std::uint64_t seed = 1);
 
 /// The unit square [0,1]² with n × n cells (tags as Domain::rectangle).

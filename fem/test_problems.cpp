@@ -12,15 +12,26 @@ namespace {
 
 using std::numbers::pi;
 
-/// The angle of (x, y) in [0, 2π): θ = 0 along the positive x axis, counter-clockwise.
-double angle(double x, double y) {
-  const double t = std::atan2(y, x);
-  return t < 0 ? t + 2 * pi : t;
+/// The angle of (x, y) in the wedge [0, ω] (θ = 0 along the positive x axis, counter-clockwise).
+/// A point of the excluded sector ω < θ < 2π (only round-off puts one there, e.g. y = −1e−17 on
+/// the edge θ = 0, where atan2 gives ≈ 2π) takes the angle of the nearer edge, 0 or ω.
+double angle(double x, double y, double omega) {
+  double t = std::atan2(y, x);
+  if (t < 0) t += 2 * pi;
+  if (t > omega) t = t > 0.5 * (omega + 2 * pi) ? 0.0 : omega;
+  return t;
 }
 
 /// (−1,1)² without the sector ω < θ < 2π (θ = angle above), vertices counter-clockwise from the
-/// corner at the origin, segments tagged 1, 2, ... in order. ω ∈ (π, 2π).
+/// corner at the origin, segments tagged 1, 2, ... in order. ω ∈ (π, 2π]; ω = 2π is the square
+/// with a slit from (1, 0) to the origin (Domain: a zero-width gap; tags 1 upper lip, 7 lower).
 Domain wedgeDomain(double omega) {
+  if (omega == 2 * pi) {
+    BoundaryLoop slit;
+    slit.points = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(-1, 1), Vec2(-1, -1), Vec2(1, -1), Vec2(1, 0)};
+    slit.tags = {1, 2, 3, 4, 5, 6, 7};
+    return Domain(slit);
+  }
   BoundaryLoop loop;
   loop.points = {Vec2(0, 0), Vec2(1, 0)};
   const Vec2 corners[] = {Vec2(1, 1), Vec2(-1, 1), Vec2(-1, -1), Vec2(1, -1)};
@@ -36,13 +47,13 @@ Domain wedgeDomain(double omega) {
   return Domain(loop);
 }
 
-/// r^a sin(aθ) (harmonic), θ ∈ [0, 2π), and its gradient a r^(a−1) (sin((a−1)θ), cos((a−1)θ)).
-double cornerU(double a, double x, double y) {
-  const double r = std::hypot(x, y);
-  return r == 0 ? 0.0 : std::pow(r, a) * std::sin(a * angle(x, y));
+/// r^a sin(aθ) (harmonic), a = π/ω, θ ∈ [0, ω], and its gradient a r^(a−1) (sin((a−1)θ), cos((a−1)θ)).
+double cornerU(double omega, double x, double y) {
+  const double r = std::hypot(x, y), a = pi / omega;
+  return r == 0 ? 0.0 : std::pow(r, a) * std::sin(a * angle(x, y, omega));
 }
-Vec2 cornerGrad(double a, double x, double y) {
-  const double r = std::hypot(x, y), t = angle(x, y);
+Vec2 cornerGrad(double omega, double x, double y) {
+  const double r = std::hypot(x, y), t = angle(x, y, omega), a = pi / omega;
   return Vec2(std::sin((a - 1) * t), std::cos((a - 1) * t)) * (a * std::pow(r, a - 1));
 }
 
@@ -93,9 +104,8 @@ void buildPeak(TestProblem& p) {
 
 void buildCorner(TestProblem& p, double omega) {
   // Mitchell (2013), reentrant corner: u = r^(π/ω) sin(πθ/ω), harmonic (f = 0).
-  const double a = pi / omega;
-  p.u = [=](double x, double y) { return cornerU(a, x, y); };
-  p.grad = [=](double x, double y) { return cornerGrad(a, x, y); };
+  p.u = [=](double x, double y) { return cornerU(omega, x, y); };
+  p.grad = [=](double x, double y) { return cornerGrad(omega, x, y); };
   p.f = [](double, double) { return 0.0; };
 }
 
@@ -125,16 +135,16 @@ void buildMultiple(TestProblem& p) {
   // + exp(−α_p ρ_p²) + atan(α_w(r_w − r0)) + exp(−(1 + y)/ε) (a boundary layer along y = −1).
   const Peak k{p.params["alpha_p"], p.params["xp"], p.params["yp"]};
   const Front w{p.params["alpha_w"], p.params["xw"], p.params["yw"], p.params["r0"]};
-  const double e = p.params["epsilon"], a = 2.0 / 3;
+  const double e = p.params["epsilon"], omega = 1.5 * pi;
   ABLMG_REQUIRE(k.a > 0 && w.a > 0 && e > 0, "problem 'multiple': alpha_p, alpha_w and epsilon must be positive (got "
                                                  << k.a << ", " << w.a << ", " << e << ")");
-  p.domain = wedgeDomain(1.5 * pi);
+  p.domain = wedgeDomain(omega);
   p.formula =
       "r^(2/3)*sin(2*theta/3)+exp(-alpha_p*((x-xp)^2+(y-yp)^2))+atan(alpha_w*(sqrt((x-xw)^2+(y-yw)^2)-r0))"
       "+exp(-(1+y)/epsilon)";
-  p.u = [=](double x, double y) { return cornerU(a, x, y) + k.u(x, y) + w.u(x, y) + std::exp(-(1 + y) / e); };
+  p.u = [=](double x, double y) { return cornerU(omega, x, y) + k.u(x, y) + w.u(x, y) + std::exp(-(1 + y) / e); };
   p.grad = [=](double x, double y) -> Vec2 {
-    return cornerGrad(a, x, y) + k.grad(x, y) + w.grad(x, y) + Vec2(0, -std::exp(-(1 + y) / e) / e);
+    return cornerGrad(omega, x, y) + k.grad(x, y) + w.grad(x, y) + Vec2(0, -std::exp(-(1 + y) / e) / e);
   };
   p.f = [=](double x, double y) { return k.f(x, y) + w.f(x, y) - std::exp(-(1 + y) / e) / (e * e); };
 }
@@ -240,11 +250,10 @@ TestProblem makeProblem(const std::string& name, const std::map<std::string, dou
     p.formula = "r^(2/3)*sin(2*theta/3)";
     buildCorner(p, 1.5 * pi);
   } else if (name == "reentrant") {
-    const double omega = p.params["omega"];
-    ABLMG_REQUIRE(omega > pi && omega < 2 * pi - 1e-9,
-                  "problem 'reentrant': omega = " << omega
-                                                  << " must be in (pi, 2 pi) (the slit domain, omega = 2 pi, needs a "
-                                                     "slit in the domain)");
+    double omega = p.params["omega"];
+    if (std::abs(omega - 2 * pi) <= 1e-9) omega = p.params["omega"] = 2 * pi;  // the slit
+    ABLMG_REQUIRE(omega > pi && omega <= 2 * pi,
+                  "problem 'reentrant': omega = " << omega << " must be in (pi, 2 pi] (2 pi: the slit)");
     p.domain = wedgeDomain(omega);
     p.formula = "r^(pi/omega)*sin(pi*theta/omega)";
     buildCorner(p, omega);

@@ -10,7 +10,8 @@
 ///  peak        exp(−α |x − (xc,yc)|²)               (0,1)²   Mitchell: peak            alpha 1000, xc 0.5, yc 0.5
 ///  lshape      r^(2/3) sin(2θ/3), θ ∈ [0, 3π/2]     (−1,1)² \ [0,1)×(−1,0]    Mitchell: reentrant corner (f = 0)
 ///  tanhlayer   tanh((y − 0.5)/ε)                    (0,1)²   anisotropic interior layer   epsilon 0.01
-///  reentrant   r^(π/ω) sin(πθ/ω), θ ∈ [0, ω]        (−1,1)² \ {ω < θ < 2π}   Mitchell: reentrant corner   omega 7π/4 (∈ (π, 2π), radians)
+///  reentrant   r^(π/ω) sin(πθ/ω), θ ∈ [0, ω]        (−1,1)² \ {ω < θ < 2π}   Mitchell: reentrant corner   omega 7π/4 (∈ (π, 2π], radians;
+///                                                   2π: the slit [0,1)×{0}, lips distinct: Domain slits)
 ///  linesing    cos(πy/2) + max(x − β(y+1), 0)^α     (−1,1)²  Mitchell: interior line singularity   alpha 2.5, beta 0.6
 ///  multiple    r^(2/3) sin(2θ/3) + exp(−α_p ρ_p²)   the L-shape   Mitchell: multiple difficulties (corner, peak,
 ///              + atan(α_w(r_w − r0)) + exp(−(1+y)/ε)      front, layer at y = −1)   alpha_p 1000, xp −√5/4, yp −1/4,
@@ -52,7 +53,7 @@ struct TestProblem {
 
 /// Builds problem `name` with `params` overriding its defaults. Throws InputError naming the
 /// valid problems (unknown name) or the problem's valid parameters (unknown key), or for an
-/// invalid value (alpha ≤ 0, epsilon ≤ 0, omega ∉ (π, 2π), linesing alpha ≤ 1).
+/// invalid value (alpha ≤ 0, epsilon ≤ 0, omega ∉ (π, 2π], linesing alpha ≤ 1).
 TestProblem makeProblem(const std::string& name, const std::map<std::string, double>& params = {});
 
 /// Names accepted by makeProblem, in the table's order.

@@ -3,9 +3,11 @@
 // values, then doubles and ints for the arrays. Whatever they are, every call must return
 // ABLMG_OK or one of the negative codes with a non-empty message, never crash or throw; a
 // successful remesh must give a valid mesh (ablmg_quality.valid) whose getters agree with
-// ablmg_get_sizes.
+// ablmg_get_sizes, and a transfer of arbitrary fields to it (any method byte) either fails
+// with a code or gives finite values, a constant field staying constant.
 #include "ablmg/capi/ablmg.h"
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -81,6 +83,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         ablmg_get_quality(h, &q) || !q.valid || q.vertices != nv || q.triangles != nt)
       std::abort();
     if (ablmg_get_vertices(h, oxy.data(), nullptr, nv + 1) != ABLMG_ERR_CAPACITY) std::abort();
+    // Two fields: arbitrary doubles (NaN, Inf, ...) or, with flags & 64, the constant 1.5.
+    std::vector<double> fields(2 * std::size_t(n)), out(2 * std::size_t(nv));
+    for (auto& u : fields) u = (flags & 64) ? 1.5 : r.next<double>();
+    const int method = r.next<std::int8_t>() % 4;  // 3 and negatives: refused
+    const int trc = ablmg_transfer(h, fields.data(), n, 2, method, out.data(), nv, nullptr);
+    expectCode(h, trc);
+    if (trc == ABLMG_OK)
+      for (double u : out)
+        if (!std::isfinite(u) || ((flags & 64) && std::abs(u - 1.5) > 1e-9)) std::abort();
   }
   ablmg_free(h);
   return 0;

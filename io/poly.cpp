@@ -94,6 +94,45 @@ Domain parsePoly(const std::string& text, const std::string& name) {
       holePts.emplace_back(x, y);
     }
   }
+  // Slits: chains of segments that end at a vertex of no other segment (a tip), peeled off the
+  // loops and added after them (Domain::withSlit, attachment first; both lips get the marker).
+  struct Slit {
+    std::vector<int> vertices;
+    int tag;
+  };
+  std::vector<Slit> slits;
+  std::vector<char> removed(segs.size(), 0);
+  const auto live = [&](int v) {
+    int n = 0;
+    for (int e : incident[std::size_t(v)]) n += !removed[std::size_t(e)];
+    return n;
+  };
+  for (std::size_t v0 = 0; v0 < pts.size(); ++v0) {
+    if (live(int(v0)) != 1) continue;
+    Slit slit{{int(v0)}, 0};
+    for (int v = int(v0);;) {
+      int e = -1;
+      for (int x : incident[std::size_t(v)])
+        if (!removed[std::size_t(x)]) e = x;
+      if (e < 0 || live(v) > 1) break;  // an attachment (3 or more) or the end of a free slit
+      removed[std::size_t(e)] = 1;
+      slit.tag = segs[std::size_t(e)].tag;
+      v = segs[std::size_t(e)].a == v ? segs[std::size_t(e)].b : segs[std::size_t(e)].a;
+      slit.vertices.push_back(v);
+      if (live(v) != 1) break;
+    }
+    std::reverse(slit.vertices.begin(), slit.vertices.end());  // attachment (or free end) first
+    slits.push_back(std::move(slit));
+  }
+  if (!slits.empty() && std::all_of(removed.begin(), removed.end(), [](char r) { return r != 0; })) {
+    const int tip = slits[0].vertices.back(), seg = incident[std::size_t(tip)][0];
+    ABLMG_REQUIRE(false, name << ":" << segs[std::size_t(seg)].line << ": boundary is not closed at vertex "
+                              << tip + base << " (only segment " << seg + base << " ends there)");
+  }
+  for (std::size_t v = 0; v < pts.size(); ++v) {
+    auto& inc = incident[v];
+    inc.erase(std::remove_if(inc.begin(), inc.end(), [&](int e) { return removed[std::size_t(e)] != 0; }), inc.end());
+  }
   // Degrees: every used vertex ends exactly two segments.
   for (std::size_t v = 0; v < pts.size(); ++v) {
     const auto& inc = incident[v];
@@ -104,7 +143,7 @@ Domain parsePoly(const std::string& text, const std::string& name) {
                                         << " segments; boundary loops must be simple");
   }
   // Walk loops in order of their first segment.
-  std::vector<char> used(segs.size(), 0);
+  std::vector<char> used(removed);
   std::vector<BoundaryLoop> loops;
   for (std::size_t first = 0; first < segs.size(); ++first) {
     if (used[first]) continue;
@@ -130,13 +169,26 @@ Domain parsePoly(const std::string& text, const std::string& name) {
   for (std::size_t l = 0; l < loops.size(); ++l) {
     if (l == outer) continue;
     const bool hasHole =
+        signedArea(loops[l].points) == 0 ||  // a zero-width loop: a free slit given as a gap
         std::any_of(holePts.begin(), holePts.end(), [&](const Vec2& h) { return insidePolygon(loops[l].points, h); });
     ABLMG_REQUIRE(hasHole, name << ": inner loop through (" << loops[l].points[0].x() << ", " << loops[l].points[0].y()
                                 << ") contains no hole point (interior constraint loops are not supported)");
     holes.push_back(std::move(loops[l]));
   }
   try {
-    return Domain(std::move(loops[outer]), std::move(holes));
+    Domain d(std::move(loops[outer]), std::move(holes));
+    for (const Slit& slit : slits) {
+      std::vector<Vec2> polyline;
+      for (int v : slit.vertices) polyline.push_back(pts[std::size_t(v)]);
+      try {
+        d = d.withSlit(polyline, slit.tag, slit.tag);
+      } catch (const InputError& e) {
+        throw InputError("the open chain of segments from vertex " + std::to_string(slit.vertices.front() + base) +
+                         " to vertex " + std::to_string(slit.vertices.back() + base) +
+                         " is no closed loop and no slit inside the domain: " + e.what());
+      }
+    }
+    return d;
   } catch (const InputError& e) { throw InputError(name + ": " + e.what()); }
 }
 

@@ -10,6 +10,11 @@
 /// Segments are assembled into closed loops (every vertex used must end exactly two
 /// segments); the loop of largest area is the outer loop; a loop containing a listed hole
 /// point is a hole. Segment boundary markers become the segment tags (1 when absent or 0).
+/// Slits (Domain::withSlit), two ways: a chain of segments hanging off a loop vertex and
+/// ending at a vertex of no other segment (its tip; both lips get the chain's marker), or a
+/// free chain inside the domain (both ends tips); or, as in medit, a zero-width gap: distinct
+/// vertices at the same coordinates, the loop running along the slit and back (each lip its
+/// own marker; a free slit is then a loop of zero area, which needs no hole point).
 /// Errors (ablmg::InputError) name file:line and the vertex/segment: an open loop ("boundary
 /// is not closed at vertex 4"), a branching vertex, indices out of range, non-finite
 /// coordinates, a `.poly` with 0 vertices (separate .node file, not supported), an inner loop

@@ -317,18 +317,9 @@ double BubbleSystem::computeForces(const AdjacencyLists& adj, const DynamicsPara
 
 void BubbleSystem::advance(const DynamicsParams& p) {
   const int n = nodes_.size();
-  maxTravelValid_ = false;
   const double dtm = p.dt / p.mass;
   active_.resize(std::size_t(n), 1);
-  // moved_[i] == stamp_: bubble i moved in this step (a new stamp per step, so nothing is
-  // cleared); updateActivity() stamps new bubbles too.
-  ++stamp_;
-  if (resetMoved_ || int(moved_.size()) != n) {
-    moved_.assign(std::size_t(n), 0);
-    resetMoved_ = false;
-  }
-  movedSinceRefresh_.resize(std::size_t(n), 1);
-  disp_.resize(std::size_t(n), 0.0);
+  movement_.beginStep(n);
   clear_.resize(std::size_t(n), 0.0);
   for (int i : segmentIds_) sStart_[i] = s_[i];  // the chain bounds use the arcs before the step
   const int m = int(list_.size());
@@ -393,11 +384,8 @@ void BubbleSystem::advance(const DynamicsParams& p) {
     // Travel is tracked for every move, however small (creeping bubbles add up); only moves
     // above moveEps2_ count for the active set.
     const Vec2 step = nodes_.positions[i] - before;
-    if (step.x() != 0 || step.y() != 0) {
-      movedSinceRefresh_[i] = 1;
-      if (i < int(refPos_.size())) disp_[i] = std::sqrt(metrics_[i].squaredLength(nodes_.positions[i] - refPos_[i]));
-      if (metrics_[i].squaredLength(step) > moveEps2_) moved_[i] = stamp_;
-    }
+    if (step.x() != 0 || step.y() != 0)
+      movement_.recordMove(i, nodes_.positions[i], metrics_[i], metrics_[i].squaredLength(step) > moveEps2_);
   }
 }
 
@@ -407,15 +395,14 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   moveEps2_ = eps * eps;
   // Since the last population edit (full pass), only the bubbles advanced in this step (list_,
   // unchanged since advance()) can have moved and nobody was kicked.
-  const bool full = resetActivity_ || int(moved_.size()) != n || int(kicked_.size()) != n;
-  if (int(moved_.size()) != n) resetMoved_ = true;
-  moved_.resize(std::size_t(n), stamp_);
+  const bool resized = movement_.coverStep(n);
+  const bool full = resetActivity_ || resized || int(kicked_.size()) != n;
   kicked_.resize(std::size_t(n), 0);
   // Candidates: bubbles awake now, and the neighbours of every bubble that moved (or was kicked).
   // Marked in parallel; concurrent stores of the same value go through atomic_ref.
   next_.assign(std::size_t(n), 0);
   auto mark = [&](int i) {
-    if (!(moved_[i] == stamp_ || kicked_[i])) return;
+    if (!(movement_.movedThisStep(i) || kicked_[i])) return;
     std::atomic_ref<char>(next_[i]).store(1, std::memory_order_relaxed);
     for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
   };
@@ -429,7 +416,6 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   }
   // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
   // instead of scanning the flags) and the largest travel since the last refresh.
-  const int nd = std::min(n, int(disp_.size()));
   auto decide = [&](int i) {  // returns the bubble's travel
     if (nodes_.kinds[i] == NodeKind::Vertex) {
       next_[i] = 0;
@@ -439,11 +425,10 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
       if (!a && active_[i]) vel_[i] = Vec2::Zero();  // asleep: force and velocity small, neighbours still
       next_[i] = char(a);
     }
-    return i < nd ? disp_[i] : 0.0;
+    return movement_.travel(i);
   };
-  maxTravel_ = collectIf(
-      n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide);
-  maxTravelValid_ = true;
+  movement_.setMaxTravel(collectIf(
+      n, nextList_.ids, parts_, [&](int i) { return next_[i] != 0; }, decide));
   active_.swap(next_);
   nextList_.valid = true;
   const long count = long(nextList_.ids.size());
@@ -454,36 +439,88 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   return count;
 }
 
-double BubbleSystem::maxTravelSinceRefresh() const {
+void MovementRecord::beginStep(int n) {
+  maxTravelValid_ = false;
+  ++stamp_;
+  if (resetStamps_ || int(stamps_.size()) != n) {
+    stamps_.assign(std::size_t(n), 0);
+    resetStamps_ = false;
+  }
+  sinceClear_.resize(std::size_t(n), 1);
+  travel_.resize(std::size_t(n), 0.0);
+}
+
+bool MovementRecord::coverStep(int n) {
+  if (int(stamps_.size()) == n) return false;
+  resetStamps_ = true;
+  stamps_.resize(std::size_t(n), stamp_);
+  return true;
+}
+
+double MovementRecord::maxTravel() const {
   if (maxTravelValid_) return maxTravel_;
   double m = 0;
-  const int n = int(disp_.size());
+  const int n = int(travel_.size());
 #pragma omp parallel for schedule(static) reduction(max : m) if (n >= kMinParallelItems)
-  for (int i = 0; i < n; ++i) m = std::max(m, disp_[i]);
+  for (int i = 0; i < n; ++i) m = std::max(m, travel_[i]);
   return m;
 }
 
-std::vector<int> BubbleSystem::travellers(double threshold) const {
+std::vector<int> MovementRecord::travellers(double threshold) const {
   std::vector<int> ids;
-  collectIf(int(disp_.size()), ids, [&](int i) { return disp_[i] > threshold; });
+  collectIf(int(travel_.size()), ids, [&](int i) { return travel_[i] > threshold; });
   return ids;
 }
 
-void BubbleSystem::resetTravel(std::span<const int> ids) {
+void MovementRecord::resetTravel(std::span<const int> ids, const std::vector<Vec2>& positions) {
   maxTravelValid_ = false;
   for (int i : ids) {
-    disp_[i] = 0.0;
-    if (i < int(refPos_.size())) refPos_[i] = nodes_.positions[i];
+    travel_[i] = 0.0;
+    if (i < int(ref_.size())) ref_[i] = positions[i];
   }
 }
 
-void BubbleSystem::clearMoved() {
-  movedSinceRefresh_.assign(std::size_t(nodes_.size()), 0);
-  disp_.assign(std::size_t(nodes_.size()), 0.0);
+void MovementRecord::clear(const std::vector<Vec2>& positions) {
+  sinceClear_.assign(positions.size(), 0);
+  travel_.assign(positions.size(), 0.0);
   maxTravel_ = 0;
   maxTravelValid_ = true;
-  refPos_ = nodes_.positions;
+  ref_ = positions;
 }
+
+void MovementRecord::keep(int from, int to) {
+  if (from < int(sinceClear_.size())) sinceClear_[to] = sinceClear_[from];
+  if (from < int(travel_.size())) travel_[to] = travel_[from];
+  if (from < int(ref_.size())) ref_[to] = ref_[from];
+}
+
+void MovementRecord::truncate(int m) {
+  sinceClear_.resize(std::size_t(m), 1);
+  travel_.resize(std::size_t(m), 0.0);
+  if (int(ref_.size()) > m) ref_.resize(std::size_t(m));
+}
+
+void MovementRecord::append(const Vec2& x, std::size_t n) {
+  sinceClear_.resize(n - 1, 1);
+  sinceClear_.push_back(1);
+  travel_.resize(n - 1, 0.0);
+  travel_.push_back(0.0);
+  if (ref_.size() + 1 == n) ref_.push_back(x);  // travel counts from here
+}
+
+void MovementRecord::displaced(int i, const Vec2& x, const Metric2& m) {
+  if (std::size_t(i) < sinceClear_.size()) sinceClear_[i] = 1;
+  if (std::size_t(i) < travel_.size() && std::size_t(i) < ref_.size())
+    travel_[i] = std::sqrt(m.squaredLength(x - ref_[i]));
+}
+
+double BubbleSystem::maxTravelSinceRefresh() const { return movement_.maxTravel(); }
+
+std::vector<int> BubbleSystem::travellers(double threshold) const { return movement_.travellers(threshold); }
+
+void BubbleSystem::resetTravel(std::span<const int> ids) { movement_.resetTravel(ids, nodes_.positions); }
+
+void BubbleSystem::clearMoved() { movement_.clear(nodes_.positions); }
 
 void BubbleSystem::wakeAll() {
   active_.assign(std::size_t(nodes_.size()), 1);
@@ -491,8 +528,8 @@ void BubbleSystem::wakeAll() {
 }
 
 void BubbleSystem::structureChanged() {
-  resetForces_ = resetMoved_ = resetActivity_ = true;
-  maxTravelValid_ = false;
+  resetForces_ = resetActivity_ = true;
+  movement_.structureChanged();
   nextList_.valid = false;
 }
 
@@ -523,9 +560,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill, bool segmen
     if (i < int(hint_.size())) hint_[m] = hint_[i];
     if (i < int(active_.size())) active_[m] = active_[i];
     if (i < int(kicked_.size())) kicked_[m] = kicked_[i];
-    if (i < int(movedSinceRefresh_.size())) movedSinceRefresh_[m] = movedSinceRefresh_[i];
-    if (i < int(disp_.size())) disp_[m] = disp_[i];
-    if (i < int(refPos_.size())) refPos_[m] = refPos_[i];
+    movement_.keep(i, m);
     if (i < int(clear_.size())) clear_[m] = clear_[i];
     chainPrev_[m] = chainPrev_[i];
     chainNext_[m] = chainNext_[i];
@@ -552,9 +587,7 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill, bool segmen
   if (int(hint_.size()) > m) hint_.resize(m);
   active_.resize(m, 1);
   kicked_.resize(m, 1);
-  movedSinceRefresh_.resize(m, 1);
-  disp_.resize(m, 0.0);
-  if (int(refPos_.size()) > m) refPos_.resize(m);
+  movement_.truncate(m);
   clear_.resize(m, 0.0);
   chainPrev_.resize(m);
   chainNext_.resize(m);
@@ -584,13 +617,9 @@ void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   const std::size_t n = metrics_.size();
   active_.resize(n - 1, 1);
   kicked_.resize(n - 1, 0);
-  movedSinceRefresh_.resize(n - 1, 1);
   active_.push_back(1);
   kicked_.push_back(1);
-  movedSinceRefresh_.push_back(1);
-  disp_.resize(n - 1, 0.0);
-  disp_.push_back(0.0);
-  if (refPos_.size() + 1 == n) refPos_.push_back(x);  // travel counts from here
+  movement_.append(x, n);
   clear_.resize(n, 0.0);
 }
 
@@ -599,9 +628,7 @@ bool BubbleSystem::displace(int i, const Vec2& x) {
   nodes_.positions[i] = x;
   vel_[i] = Vec2::Zero();
   if (std::size_t(i) < clear_.size()) clear_[i] = 0;  // unknown: the next move tests the boundary
-  if (std::size_t(i) < movedSinceRefresh_.size()) movedSinceRefresh_[i] = 1;
-  if (std::size_t(i) < disp_.size() && std::size_t(i) < refPos_.size())
-    disp_[i] = std::sqrt(metrics_[i].squaredLength(x - refPos_[i]));
+  movement_.displaced(i, x, metrics_[i]);
   kick(i);
   return true;
 }

@@ -26,6 +26,8 @@
 #include "ablmg/mesher/initial_placement.hpp"
 #include "ablmg/mesher/node_set.hpp"
 
+#include <cmath>
+#include <span>
 #include <vector>
 
 namespace ablmg::mesher {
@@ -34,6 +36,68 @@ struct DynamicsParams {
   double k0 = 1.0, mass = 1.0, damping = 0.35,
          dt = 0.45;  ///< defaults of PlacementOptions (see there; paper §6: c = 3.8429, Δt = 0.02)
   PairDistance pairDistance = PairDistance::Harmonic;  ///< w of the pair force (bubble_force.hpp)
+};
+
+/// Where the bubbles went: one record for the adjacency upkeep (travel since the lists were
+/// last computed, place_nodes.hpp) and for the active set (moves in the current step).
+/// Invariant, for every bubble i the record covers:
+///  - ref(i): where i was at the last clear() or resetTravel() of i (the reference positions;
+///    empty before the first clear());
+///  - travel(i) = |x_i − ref(i)|_{M_i}, x_i and M_i as of i's last recorded move (0 after a
+///    clear or reset; 0 for an added bubble, whose reference is where it was added);
+///  - movedSinceClear()[i] ⇔ i moved, was added or displaced since the last clear();
+///  - movedThisStep(i) ⇔ i moved by more than the activity threshold in the current step
+///    (a step stamp per bubble: nothing is cleared between steps);
+///  - maxTravel() = max_i travel(i) (cached when known).
+class MovementRecord {
+ public:
+  /// A new step over n bubbles: new ones count as moved since the clear, with travel 0.
+  void beginStep(int n);
+  /// Bubble i moved to x by `step` in this step (metric m at its new position); `active`: the
+  /// move exceeds the activity threshold. Safe in parallel over distinct i.
+  void recordMove(int i, const Vec2& x, const Metric2& m, bool active) {
+    sinceClear_[i] = 1;
+    if (i < int(ref_.size())) travel_[i] = std::sqrt(m.squaredLength(x - ref_[i]));
+    if (active) stamps_[i] = stamp_;
+  }
+  /// Stamps for n bubbles; bubbles new since the last step count as moved in it. Returns true
+  /// when the count changed (the caller then makes a full pass).
+  bool coverStep(int n);
+  bool movedThisStep(int i) const { return stamps_[i] == stamp_; }
+  double travel(int i) const { return i < int(travel_.size()) ? travel_[i] : 0.0; }
+  void setMaxTravel(double m) {
+    maxTravel_ = m;
+    maxTravelValid_ = true;
+  }
+  double maxTravel() const;
+  std::vector<int> travellers(double threshold) const;
+  void resetTravel(std::span<const int> ids, const std::vector<Vec2>& positions);
+  void clear(const std::vector<Vec2>& positions);
+  const std::vector<char>& movedSinceClear() const { return sinceClear_; }
+  const std::vector<Vec2>& referencePositions() const { return ref_; }
+  /// After population edits: the stamps restart in full at the next step, the maximum is unknown.
+  void structureChanged() {
+    resetStamps_ = true;
+    maxTravelValid_ = false;
+  }
+  void invalidateMaxTravel() { maxTravelValid_ = false; }
+  /// Removal: bubble `from` becomes `to` (to ≤ from, in increasing order), then truncate(m).
+  void keep(int from, int to);
+  void truncate(int m);
+  /// A bubble added at x as the n-th (its travel counts from x once references exist).
+  void append(const Vec2& x, std::size_t n);
+  /// Bubble i was moved to x by hand (metric m).
+  void displaced(int i, const Vec2& x, const Metric2& m);
+
+ private:
+  std::vector<Vec2> ref_;
+  std::vector<double> travel_;
+  std::vector<char> sinceClear_;
+  std::vector<int> stamps_;  ///< step stamp of a bubble's last move (== stamp_: moved in this step)
+  int stamp_ = 1;
+  bool resetStamps_ = true;
+  double maxTravel_ = 0;
+  bool maxTravelValid_ = false;
 };
 
 class BubbleSystem {
@@ -73,7 +137,7 @@ class BubbleSystem {
   /// Wake bubble i now and its neighbours at the next updateActivity() (population edits).
   void kick(int i);
   /// Bubbles that moved since the last clearMoved() (for a partial adjacency refresh).
-  const std::vector<char>& movedSinceRefresh() const { return movedSinceRefresh_; }
+  const std::vector<char>& movedSinceRefresh() const { return movement_.movedSinceClear(); }
   void clearMoved();
   /// Largest metric distance of a bubble from where it was at clearMoved(): the two-ring
   /// refresh of the adjacency lists is exact while this stays below (radius − 1.5)/2.
@@ -82,7 +146,7 @@ class BubbleSystem {
   double maxTravelSinceRefresh() const;
   /// Reference positions: where each bubble was at the last clearMoved()/resetTravel(); its
   /// travel is measured from there. Empty before the first clearMoved().
-  const std::vector<Vec2>& referencePositions() const { return refPos_; }
+  const std::vector<Vec2>& referencePositions() const { return movement_.referencePositions(); }
   /// Bubbles whose travel since the last clearMoved()/resetTravel() exceeds `threshold` (ascending).
   std::vector<int> travellers(double threshold) const;
   /// Travel of these bubbles counts again from their current positions (after a local refresh).
@@ -130,13 +194,11 @@ class BubbleSystem {
   std::vector<int> list_;                ///< bubbles computed/moved this step (awake, not Vertex), ascending
   std::vector<char> next_;               ///< updateActivity's scratch
   std::vector<std::vector<int>> parts_;  ///< updateActivity's per-thread id lists
-  double maxTravel_ = 0;                 ///< max of disp_ when maxTravelValid_
-  bool maxTravelValid_ = false;
   struct {
     std::vector<int> ids;  ///< awake bubbles after updateActivity (ascending), for the next computeForces
     bool valid = false;
   } nextList_;
-  bool resetForces_ = true, resetMoved_ = true, resetActivity_ = true;
+  bool resetForces_ = true, resetActivity_ = true;
   const DomainGeometry* geo_;
   NodeSet nodes_;
   std::vector<double> s_, sLo_,
@@ -149,13 +211,11 @@ class BubbleSystem {
   std::vector<int> segmentIds_;  ///< Segment nodes, ascending
   std::vector<double> sStart_;   ///< s_ at the start of the current step (Segment nodes)
   std::vector<Vec2> vel_, force_;
-  std::vector<double> res_, disp_;
+  std::vector<double> res_;
   std::vector<double> clear_;  ///< Interior nodes: lower bound of the Euclidean distance to the boundary (0 = unknown)
-  std::vector<Vec2> refPos_;   ///< positions at the last clearMoved()
-  std::vector<char> active_, movedSinceRefresh_, kicked_;
-  std::vector<int> moved_;  ///< step stamp of a bubble's last move (== stamp_: moved in this step)
-  int stamp_ = 1;
-  double moveEps2_ = 0;  ///< squared metric displacement below which a step is not a move
+  std::vector<char> active_, kicked_;
+  MovementRecord movement_;  ///< travel since the last clearMoved(), moves in this step
+  double moveEps2_ = 0;      ///< squared metric displacement below which a step is not a move
   std::vector<Metric2> metrics_;
   std::vector<Vec2> evalPos_;  ///< where metrics_[i] was evaluated
   std::vector<int> hint_;      ///< location hint of bubble i in the metric field (MetricField::evaluate)

@@ -155,17 +155,12 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
   return u.squaredNorm() < v.squaredNorm();
 }
 
-/// Steps 1–3 (paper §4.1) over the nodes with used[i] set: links, eq. (12) deletions, and the
-/// consistent triangles (sorted, smallest id first). Fills the local-mesh statistics.
-std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, const std::vector<char>& used,
-                                            int threads, ConnectStats& st) {
+/// Step 1 (paper §4.1): the links, adjacency pairs of used nodes inside the domain (not
+/// leaving a boundary node's angle, not crossing a boundary edge), plus every boundary edge;
+/// rows sorted by id, with their counter-clockwise order.
+Links buildLinks(const PlacementResult& placement, const std::vector<char>& used, int threads, ConnectStats& st) {
   const auto& pos = placement.nodes.positions;
-  const auto& met = placement.metrics;
   const int n = int(pos.size());
-  st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
-  st.deletionRounds = 0;
-  // 1. Links: adjacency pairs inside the domain.
-  const Stopwatch watch;
   std::vector<int> prevB(n, -1), nextB(n, -1);
   for (const auto& e : placement.boundaryEdges) {
     nextB[e.a] = e.b;
@@ -180,8 +175,6 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     return turn > 0 ? (left1 && left2) : turn < 0 ? (left1 || left2) : left1;
   };
   const auto& adj = placement.adjacency;
-  Links links;
-  links.offsets.assign(n + 1, 0);
   std::vector<std::vector<int>> rowsOf(n);
   long longLinks = 0;
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) reduction(+ : longLinks)
@@ -215,6 +208,8 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
       if (std::find(rowsOf[i].begin(), rowsOf[i].end(), j) == rowsOf[i].end()) rowsOf[i].push_back(j);
   }
+  Links links;
+  links.offsets.assign(n + 1, 0);
   for (int i = 0; i < n; ++i) links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
   links.ids.resize(links.offsets[n]);
   links.ccw.resize(links.offsets[n]);
@@ -227,12 +222,17 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
               [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
   }
-  rowsOf = {};
   st.longLinksDropped = longLinks;
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
+  return links;
+}
 
-  // 2. Deleting non-satellite nodes (eq. 12), in rounds until nothing changes.
+/// Step 2: deletes the links to non-satellite nodes (eq. 12), in rounds until nothing changes.
+void deleteNonSatellites(const PlacementResult& placement, Links& links, int threads, ConnectStats& st) {
+  const auto& pos = placement.nodes.positions;
+  const auto& met = placement.metrics;
+  const int n = int(pos.size());
   std::vector<std::uint8_t> kill(links.ids.size(), 0);
   const auto markDead = [&](int i, int j) {
     for (const int e : {links.find(i, j), links.find(j, i)})
@@ -274,9 +274,12 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
     st.deletionRounds = round + 1;
     if (deleted == 0) break;
   }
+}
 
-  // 3. Consistent triangles: (p, s, t) with s, t consecutive in p's ring, listed once (p the
-  //    smallest id), present in the rings of s and t as well.
+/// Step 3: the consistent triangles, (p, s, t) with s, t consecutive in p's ring, listed once
+/// (p the smallest id), present in the rings of s and t as well; sorted.
+std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, const Links& links, int threads) {
+  const int n = int(pos.size());
   std::vector<std::vector<std::array<int, 3>>> perThread(threads);
 #pragma omp parallel num_threads(threads)
   {
@@ -305,90 +308,105 @@ std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, co
   std::vector<std::array<int, 3>> consistent;
   for (auto& v : perThread) consistent.insert(consistent.end(), v.begin(), v.end());
   std::sort(consistent.begin(), consistent.end());
+  return consistent;
+}
+
+/// Steps 1–3 (paper §4.1) over the nodes with used[i] set: links, eq. (12) deletions, and the
+/// consistent triangles (sorted, smallest id first). Fills the local-mesh statistics.
+std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, const std::vector<char>& used,
+                                            int threads, ConnectStats& st) {
+  st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
+  st.deletionRounds = 0;
+  const Stopwatch watch;
+  Links links = buildLinks(placement, used, threads, st);
+  deleteNonSatellites(placement, links, threads, st);
+  std::vector<std::array<int, 3>> consistent = consistentTriangles(placement.nodes.positions, links, threads);
   st.consistentTriangles = long(consistent.size());
   st.secondsLocalMeshes = watch.seconds();
   return consistent;
 }
 
-/// Local repair (the usual case: a few near-cocircular spots in a valid union). Defects of the
-/// union: an edge in one triangle that is not a boundary edge on its inner side, in three or
-/// more, or in two with the same orientation; a boundary edge in none. The triangles touching a
-/// defect's vertices are removed with two more rings around them, and what is open (those
-/// holes and any gap) is triangulated again from its own points only: Delaunay, its boundary
-/// locked, inside by orientation, eq. (12) swaps. Fills `result` and returns true when the
-/// union of kept and new triangles validates against `area`; false (nothing to trust) else.
-bool repairLocally(const PlacementResult& placement, const std::vector<std::array<int, 3>>& consistent, double area,
-                   ConnectResult& result) {
-  const auto& pos = placement.nodes.positions;
-  const auto& met = placement.metrics;
-  const int n = int(pos.size());
-  struct Half {
-    int lo, hi, a, t;  // undirected key, start vertex of the directed edge, triangle
-    bool operator<(const Half& o) const {
-      return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t;
-    }
-  };
-  // Half-edges in Half order: counting sort on lo, then each vertex's few sorted on their own.
-  auto halves = [&](const std::vector<std::array<int, 3>>& tris, const std::vector<char>* skip) {
-    std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
-    for (int t = 0; t < int(tris.size()); ++t)
-      if (!skip || !(*skip)[std::size_t(t)])
-        for (int k = 0; k < 3; ++k)
-          ++start[std::size_t(std::min(tris[std::size_t(t)][k], tris[std::size_t(t)][(k + 1) % 3])) + 1];
-    for (int v = 0; v < n; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
-    std::vector<Half> h(static_cast<std::size_t>(start[std::size_t(n)]));
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int t = 0; t < int(tris.size()); ++t) {
-      if (skip && (*skip)[std::size_t(t)]) continue;
-      for (int k = 0; k < 3; ++k) {
-        const int a = tris[std::size_t(t)][k], b = tris[std::size_t(t)][(k + 1) % 3];
-        h[std::size_t(fill[std::size_t(std::min(a, b))]++)] = {std::min(a, b), std::max(a, b), a, t};
-      }
-    }
-    for (int v = 0; v < n; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
-    return h;
-  };
-  std::vector<std::array<int, 2>> bnd;  // boundary edges a→b (domain on the left), sorted
-  for (const auto& e : placement.boundaryEdges) bnd.push_back({e.a, e.b});
-  std::sort(bnd.begin(), bnd.end());
-  // Index of the boundary edge a→b in bnd, or −1.
-  const auto boundaryIndex = [&](int a, int b) {
-    const auto it = std::lower_bound(bnd.begin(), bnd.end(), std::array<int, 2>{a, b});
-    return it != bnd.end() && *it == std::array<int, 2>{a, b} ? int(it - bnd.begin()) : -1;
-  };
+/// A directed half-edge a→x of triangle t, keyed by its undirected edge (lo, hi).
+struct Half {
+  int lo, hi, a, t;
+  bool operator<(const Half& o) const {
+    return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : a != o.a ? a < o.a : t < o.t;
+  }
+};
 
-  // 1. Defects → marked vertices.
+/// The half-edges of the triangles not skipped, in Half order: counting sort on lo, then each
+/// vertex's few sorted on their own.
+std::vector<Half> halfEdges(int n, const std::vector<std::array<int, 3>>& tris, const std::vector<char>* skip) {
+  std::vector<int> start(static_cast<std::size_t>(n) + 1, 0);
+  for (int t = 0; t < int(tris.size()); ++t)
+    if (!skip || !(*skip)[std::size_t(t)])
+      for (int k = 0; k < 3; ++k)
+        ++start[std::size_t(std::min(tris[std::size_t(t)][k], tris[std::size_t(t)][(k + 1) % 3])) + 1];
+  for (int v = 0; v < n; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  std::vector<Half> h(static_cast<std::size_t>(start[std::size_t(n)]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int t = 0; t < int(tris.size()); ++t) {
+    if (skip && (*skip)[std::size_t(t)]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = tris[std::size_t(t)][k], b = tris[std::size_t(t)][(k + 1) % 3];
+      h[std::size_t(fill[std::size_t(std::min(a, b))]++)] = {std::min(a, b), std::max(a, b), a, t};
+    }
+  }
+  for (int v = 0; v < n; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
+  return h;
+}
+
+/// The boundary edges a→b (domain on the left), sorted, for lookups.
+struct BoundaryIndex {
+  std::vector<std::array<int, 2>> edges;
+  explicit BoundaryIndex(std::span<const BoundaryEdge> boundary) {
+    for (const auto& e : boundary) edges.push_back({e.a, e.b});
+    std::sort(edges.begin(), edges.end());
+  }
+  /// Index of the boundary edge a→b, or −1.
+  int find(int a, int b) const {
+    const auto it = std::lower_bound(edges.begin(), edges.end(), std::array<int, 2>{a, b});
+    return it != edges.end() && *it == std::array<int, 2>{a, b} ? int(it - edges.begin()) : -1;
+  }
+};
+
+/// Repair step 1: the vertices of the union's defects, an edge in one triangle that is not a
+/// boundary edge on its inner side, in three or more, or in two with the same orientation; a
+/// boundary edge in none. Empty when there is none.
+std::vector<char> defectVertices(int n, const std::vector<std::array<int, 3>>& consistent, const BoundaryIndex& bnd) {
   std::vector<char> mark(static_cast<std::size_t>(n), 0);
   bool any = false;
   auto markEdge = [&](int a, int b) {
     mark[std::size_t(a)] = mark[std::size_t(b)] = 1;
     any = true;
   };
-  std::vector<char> covered(bnd.size(), 0);
-  {
-    const auto h = halves(consistent, nullptr);
-    for (std::size_t i = 0; i < h.size();) {
-      std::size_t j = i;
-      while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
-      const std::size_t count = j - i;
-      const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;  // the first half-edge runs a→b
-      if (count == 1) {
-        const int e = boundaryIndex(a, b);
-        if (e >= 0)
-          covered[std::size_t(e)] = 1;
-        else
-          markEdge(a, b);
-      } else if (count > 2 || h[i].a == h[i + 1].a || boundaryIndex(h[i].lo, h[i].hi) >= 0 ||
-                 boundaryIndex(h[i].hi, h[i].lo) >= 0) {
-        markEdge(h[i].lo, h[i].hi);
-      }
-      i = j;
+  std::vector<char> covered(bnd.edges.size(), 0);
+  const auto h = halfEdges(n, consistent, nullptr);
+  for (std::size_t i = 0; i < h.size();) {
+    std::size_t j = i;
+    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    const std::size_t count = j - i;
+    const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;  // the first half-edge runs a→b
+    if (count == 1) {
+      const int e = bnd.find(a, b);
+      if (e >= 0)
+        covered[std::size_t(e)] = 1;
+      else
+        markEdge(a, b);
+    } else if (count > 2 || h[i].a == h[i + 1].a || bnd.find(h[i].lo, h[i].hi) >= 0 ||
+               bnd.find(h[i].hi, h[i].lo) >= 0) {
+      markEdge(h[i].lo, h[i].hi);
     }
+    i = j;
   }
-  for (std::size_t k = 0; k < bnd.size(); ++k)
-    if (!covered[k]) markEdge(bnd[k][0], bnd[k][1]);
-  if (!any) return false;  // combinatorially sound: the failure was the area; leave it to the scaffold
-  // 2. Remove the triangles touching marked vertices, three rings in all.
+  for (std::size_t k = 0; k < bnd.edges.size(); ++k)
+    if (!covered[k]) markEdge(bnd.edges[k][0], bnd.edges[k][1]);
+  if (!any) mark.clear();
+  return mark;
+}
+
+/// Repair step 2: the triangles touching marked vertices, grown by three rings in all.
+std::vector<char> removedAround(const std::vector<std::array<int, 3>>& consistent, std::vector<char> mark) {
   const int nt = int(consistent.size());
   std::vector<char> removed(static_cast<std::size_t>(nt), 0);
   for (int ring = 0; ring < 3; ++ring) {
@@ -398,56 +416,73 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
       if (removed[std::size_t(t)])
         for (int v : consistent[std::size_t(t)]) mark[std::size_t(v)] = 1;
   }
-  // 3. The open region's boundary, oriented with the open side on the left, and its points.
+  return removed;
+}
+
+/// The open region left by the removed triangles: its boundary (open side on the left), in
+/// global ids, and its points, numbered locally (globalOf: local → global).
+struct OpenRegion {
+  std::vector<std::array<int, 2>> edges;
+  std::vector<int> localOf, globalOf;
+};
+
+/// Repair step 3; false when the kept triangles overlap.
+bool openRegion(int n, const std::vector<std::array<int, 3>>& consistent, const std::vector<char>& removed,
+                const BoundaryIndex& bnd, OpenRegion& region) {
+  const int nt = int(consistent.size());
   std::vector<char> inKept(static_cast<std::size_t>(n), 0);
   for (int t = 0; t < nt; ++t)
     if (!removed[std::size_t(t)])
       for (int v : consistent[std::size_t(t)]) inKept[std::size_t(v)] = 1;
-  std::vector<std::array<int, 2>> holeEdges;
-  std::fill(covered.begin(), covered.end(), 0);
-  {
-    const auto h = halves(consistent, &removed);
-    for (std::size_t i = 0; i < h.size();) {
-      std::size_t j = i;
-      while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
-      if (j - i > 2 || (j - i == 2 && h[i].a == h[i + 1].a)) return false;  // kept triangles overlap
-      if (j - i == 1) {
-        const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;
-        const int e = boundaryIndex(a, b);
-        if (e >= 0)
-          covered[std::size_t(e)] = 1;
-        else
-          holeEdges.push_back({b, a});
-      }
-      i = j;
+  std::vector<char> covered(bnd.edges.size(), 0);
+  const auto h = halfEdges(n, consistent, &removed);
+  for (std::size_t i = 0; i < h.size();) {
+    std::size_t j = i;
+    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    if (j - i > 2 || (j - i == 2 && h[i].a == h[i + 1].a)) return false;  // kept triangles overlap
+    if (j - i == 1) {
+      const int a = h[i].a, b = a == h[i].lo ? h[i].hi : h[i].lo;
+      const int e = bnd.find(a, b);
+      if (e >= 0)
+        covered[std::size_t(e)] = 1;
+      else
+        region.edges.push_back({b, a});
     }
+    i = j;
   }
-  for (std::size_t k = 0; k < bnd.size(); ++k)
-    if (!covered[k]) holeEdges.push_back(bnd[k]);
-  std::vector<int> localOf(static_cast<std::size_t>(n), -1), globalOf;
+  for (std::size_t k = 0; k < bnd.edges.size(); ++k)
+    if (!covered[k]) region.edges.push_back(bnd.edges[k]);
+  region.localOf.assign(static_cast<std::size_t>(n), -1);
   auto take = [&](int v) {
-    if (localOf[std::size_t(v)] < 0) {
-      localOf[std::size_t(v)] = int(globalOf.size());
-      globalOf.push_back(v);
+    if (region.localOf[std::size_t(v)] < 0) {
+      region.localOf[std::size_t(v)] = int(region.globalOf.size());
+      region.globalOf.push_back(v);
     }
   };
   for (int v = 0; v < n; ++v)
     if (!inKept[std::size_t(v)]) take(v);
-  for (const auto& e : holeEdges) {
+  for (const auto& e : region.edges) {
     take(e[0]);
     take(e[1]);
   }
-  if (globalOf.size() < 3) return false;
-  // 4. Triangulate the open region from its points.
+  return true;
+}
+
+/// Repair step 4: triangulates the open region from its own points (Delaunay, its boundary
+/// locked, inside by orientation, eq. (12) swaps); global ids. False when its boundary cannot
+/// be recovered or is not a closed polygon.
+bool triangulateOpen(const PlacementResult& placement, const OpenRegion& region, std::vector<std::array<int, 3>>& fresh,
+                     long& swaps) {
+  const auto& pos = placement.nodes.positions;
+  const auto& met = placement.metrics;
+  const auto& globalOf = region.globalOf;
   std::vector<Vec2> sub(globalOf.size());
   for (std::size_t k = 0; k < globalOf.size(); ++k) sub[k] = pos[std::size_t(globalOf[k])];
-  std::vector<std::array<int, 3>> fresh;
-  long swaps = 0;
   try {
     Triangulation tri(sub);
     std::vector<std::array<int, 2>> local;
-    for (const auto& e : holeEdges) {
-      local.push_back({localOf[std::size_t(e[0])], localOf[std::size_t(e[1])]});
+    for (const auto& e : region.edges) {
+      local.push_back({region.localOf[std::size_t(e[0])], region.localOf[std::size_t(e[1])]});
       if (!tri.recoverEdge(local.back()[0], local.back()[1])) return false;
     }
     tri.classify(local);
@@ -467,18 +502,19 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
   } catch (const Error&) {
     return false;  // an open region that is not a closed polygon: leave it to the scaffold
   }
-  // 5. The mesh: kept + fresh triangles, nodes in no triangle dropped; it must validate.
-  std::vector<std::array<int, 3>> tris;
-  tris.reserve(std::size_t(nt) + fresh.size());
-  for (int t = 0; t < nt; ++t)
-    if (!removed[std::size_t(t)]) tris.push_back(consistent[std::size_t(t)]);
-  tris.insert(tris.end(), fresh.begin(), fresh.end());
+  return true;
+}
+
+/// Repair step 5: the mesh of the given triangles, nodes in none dropped; false when a
+/// boundary node is dropped or the mesh does not validate against `area`.
+bool meshOfTriangles(const PlacementResult& placement, const std::vector<std::array<int, 3>>& tris, double area,
+                     Mesh2& mesh, std::vector<int>& nodeOfVertex) {
+  const auto& pos = placement.nodes.positions;
+  const int n = int(pos.size());
   std::vector<char> used(static_cast<std::size_t>(n), 0);
   for (const auto& t : tris)
     for (int v : t) used[std::size_t(v)] = 1;
   std::vector<int> vertexOf(static_cast<std::size_t>(n), -1);
-  Mesh2 mesh;
-  std::vector<int> nodeOfVertex;
   for (int i = 0; i < n; ++i) {
     if (!used[std::size_t(i)]) continue;
     vertexOf[std::size_t(i)] = int(nodeOfVertex.size());
@@ -493,7 +529,34 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
     if (vertexOf[std::size_t(e.a)] < 0 || vertexOf[std::size_t(e.b)] < 0) return false;
     mesh.boundaryEdges.push_back({vertexOf[std::size_t(e.a)], vertexOf[std::size_t(e.b)], e.ref});
   }
-  if (!mesh.validate(area, 1e-9).ok) return false;
+  return mesh.validate(area, 1e-9).ok;
+}
+
+/// Local repair (the usual case: a few near-cocircular spots in a valid union). The triangles
+/// touching a defect's vertices (step 1) are removed with two more rings around them (step 2),
+/// and what is open (those holes and any gap, step 3) is triangulated again from its own
+/// points only (step 4). Fills `result` and returns true when the union of kept and new
+/// triangles validates against `area` (step 5); false (nothing to trust) else.
+bool repairLocally(const PlacementResult& placement, const std::vector<std::array<int, 3>>& consistent, double area,
+                   ConnectResult& result) {
+  const int n = int(placement.nodes.positions.size());
+  const BoundaryIndex bnd(placement.boundaryEdges);
+  std::vector<char> mark = defectVertices(n, consistent, bnd);
+  if (mark.empty()) return false;  // combinatorially sound: the failure was the area; leave it to the scaffold
+  const std::vector<char> removed = removedAround(consistent, std::move(mark));
+  OpenRegion region;
+  if (!openRegion(n, consistent, removed, bnd, region) || region.globalOf.size() < 3) return false;
+  std::vector<std::array<int, 3>> fresh;
+  long swaps = 0;
+  if (!triangulateOpen(placement, region, fresh, swaps)) return false;
+  std::vector<std::array<int, 3>> tris;
+  tris.reserve(consistent.size() + fresh.size());
+  for (std::size_t t = 0; t < consistent.size(); ++t)
+    if (!removed[t]) tris.push_back(consistent[t]);
+  tris.insert(tris.end(), fresh.begin(), fresh.end());
+  Mesh2 mesh;
+  std::vector<int> nodeOfVertex;
+  if (!meshOfTriangles(placement, tris, area, mesh, nodeOfVertex)) return false;
   result.mesh = std::move(mesh);
   result.nodeOfVertex = std::move(nodeOfVertex);
   result.stats.droppedNodes = n - int(result.nodeOfVertex.size());
@@ -507,55 +570,27 @@ bool repairLocally(const PlacementResult& placement, const std::vector<std::arra
   return true;
 }
 
-}  // namespace
+/// The area the mesh must cover (as meshDomain checks it): the polygon through the boundary
+/// nodes when a loop is smooth (curved), the domain's area else.
+double areaToCover(const PlacementResult& placement, const Domain& domain) {
+  bool smooth = false;
+  for (const auto& loop : domain.loops()) smooth = smooth || loop.smooth;
+  if (!smooth) return domain.area();
+  double area = 0;
+  const auto& pos = placement.nodes.positions;
+  for (const auto& e : placement.boundaryEdges) area += 0.5 * cross(pos[e.a], pos[e.b]);
+  return area;
+}
 
-ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
+/// Fallback: a constrained Delaunay scaffold of all nodes (inside/outside by the boundary
+/// edges); the local meshes again without the nodes outside; eq. (12) swaps, every consistent
+/// edge recovered, swaps again; the inside triangles are the mesh.
+void scaffoldMesh(const PlacementResult& placement, std::vector<std::array<int, 3>> consistent, int threads,
+                  ConnectResult& result) {
   const auto& pos = placement.nodes.positions;
   const auto& met = placement.metrics;
   const int n = int(pos.size());
-  ABLMG_REQUIRE(int(met.size()) == n && placement.adjacency.size() == n, "connect: placement has inconsistent sizes");
-  ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
-  // Small node sets run on the calling thread (parallel_threshold.hpp); same result either way.
-  const int threads = n < kMinParallelItems ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
-  ConnectResult result;
   ConnectStats& st = result.stats;
-
-  // Steps 1–3 over all nodes. When the union of the local meshes is already a valid mesh of
-  // the polygon through the boundary nodes (the usual case), it is the mesh, as in the paper.
-  std::vector<char> used(n, 1);
-  std::vector<std::array<int, 3>> consistent = localMeshes(placement, used, threads, st);
-  {
-    const Stopwatch validateWatch;
-    Mesh2 un;
-    un.vertices = pos;
-    un.triangles = consistent;
-    un.boundaryEdges = placement.boundaryEdges;
-    double area = 0;  // what the mesh must cover (as meshDomain checks it)
-    bool smooth = false;
-    for (const auto& loop : domain.loops()) smooth = smooth || loop.smooth;
-    if (smooth)
-      for (const auto& e : placement.boundaryEdges) area += 0.5 * cross(pos[e.a], pos[e.b]);
-    else
-      area = domain.area();
-    const bool ok = un.validate(area, 1e-9).ok;
-    result.secondsValidate = validateWatch.seconds();
-    if (ok) {
-      result.validated = true;
-      result.mesh = std::move(un);
-      result.nodeOfVertex.resize(n);
-      std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
-      return result;
-    }
-    const Stopwatch repairWatch;
-    const bool repaired = options.localRepair && repairLocally(placement, consistent, area, result);
-    st.secondsRepair += repairWatch.seconds();
-    if (repaired) {
-      st.localRepair = true;
-      return result;
-    }
-  }
-
-  // Scaffold: constrained Delaunay triangulation of all nodes, inside/outside.
   Stopwatch watch;
   Triangulation tri(pos);
   std::vector<std::array<int, 2>> boundary;
@@ -568,7 +603,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     boundary.push_back({e.a, e.b});
   }
   tri.classify(boundary);
-  std::fill(used.begin(), used.end(), 0);
+  std::vector<char> used(n, 0);
   for (int t = 0; t < tri.numTriangleSlots(); ++t)
     if (tri.inside(t))
       for (int v : tri.triangle(t)) used[v] = 1;
@@ -620,6 +655,47 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   for (const auto& e : placement.boundaryEdges)
     result.mesh.boundaryEdges.push_back({vertexOf[e.a], vertexOf[e.b], e.ref});
   st.secondsRepair += watch.seconds();
+}
+
+}  // namespace
+
+ConnectResult connect(const PlacementResult& placement, const Domain& domain, const ConnectOptions& options) {
+  const auto& pos = placement.nodes.positions;
+  const int n = int(pos.size());
+  ABLMG_REQUIRE(int(placement.metrics.size()) == n && placement.adjacency.size() == n,
+                "connect: placement has inconsistent sizes");
+  ABLMG_REQUIRE(!placement.boundaryEdges.empty(), "connect: no boundary edges");
+  // Small node sets run on the calling thread (parallel_threshold.hpp); same result either way.
+  const int threads = n < kMinParallelItems ? 1 : options.threads > 0 ? options.threads : omp_get_max_threads();
+  ConnectResult result;
+  ConnectStats& st = result.stats;
+
+  // Steps 1–3 over all nodes. When the union of the local meshes is already a valid mesh of
+  // the polygon through the boundary nodes (the usual case), it is the mesh, as in the paper.
+  std::vector<std::array<int, 3>> consistent = localMeshes(placement, std::vector<char>(n, 1), threads, st);
+  const Stopwatch validateWatch;
+  Mesh2 un;
+  un.vertices = pos;
+  un.triangles = consistent;
+  un.boundaryEdges = placement.boundaryEdges;
+  const double area = areaToCover(placement, domain);
+  const bool ok = un.validate(area, 1e-9).ok;
+  result.secondsValidate = validateWatch.seconds();
+  if (ok) {
+    result.validated = true;
+    result.mesh = std::move(un);
+    result.nodeOfVertex.resize(n);
+    std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
+    return result;
+  }
+  const Stopwatch repairWatch;
+  const bool repaired = options.localRepair && repairLocally(placement, consistent, area, result);
+  st.secondsRepair += repairWatch.seconds();
+  if (repaired) {
+    st.localRepair = true;
+    return result;
+  }
+  scaffoldMesh(placement, std::move(consistent), threads, result);
   return result;
 }
 

@@ -208,6 +208,38 @@ double DomainGeometry::indexArc(int l, double s) const {
   return k + std::clamp((s - p.cum[k]) / (p.cum[k + 1] - p.cum[k]), 0.0, 1.0 - 1e-15);
 }
 
+namespace {
+
+/// Appends the samples of the piece [a, b) of a boundary edge (arc sa → sb, metrics ma, mb) to
+/// `sub`/`subS`, halving it while it is longer than a quarter in the metric or its metric
+/// length from the ends' metrics and from the halves' differ by more than 5 %: the end metrics
+/// of a long edge can miss a layer that crosses it (a unit-square side crossed by a layer of
+/// width 10⁻² got a tenth of the layer's boundary nodes, and the interior bubbles met the
+/// boundary in slivers). At most kMaxHalvings halvings of a piece. `hint`: the last point
+/// location (MetricField::evaluate with hints), carried along the boundary: under a stretched
+/// background mesh a location from scratch walks across many thin triangles.
+void sampleBoundaryPiece(const MetricField& metric, const Vec2& a, const Metric2& ma, double sa, const Vec2& b,
+                         const Metric2& mb, double sb, int depth, int& hint, std::vector<Vec2>& sub,
+                         std::vector<double>& subS) {
+  constexpr int kMaxHalvings = 30;
+  if (depth < kMaxHalvings) {
+    const Vec2 c = 0.5 * (a + b);
+    Metric2 mc;
+    metric.evaluate(std::span<const Vec2>(&c, 1), std::span<Metric2>(&mc, 1), std::span<int>(&hint, 1));
+    const double whole = edgeLength(a, ma, b, mb), halves = edgeLength(a, ma, c, mc) + edgeLength(c, mc, b, mb);
+    if (halves > 0.25 || std::abs(halves - whole) > 0.05 * halves) {
+      const double sc = 0.5 * (sa + sb);
+      sampleBoundaryPiece(metric, a, ma, sa, c, mc, sc, depth + 1, hint, sub, subS);
+      sampleBoundaryPiece(metric, c, mc, sc, b, mb, sb, depth + 1, hint, sub, subS);
+      return;
+    }
+  }
+  sub.push_back(a);
+  subS.push_back(sa);
+}
+
+}  // namespace
+
 void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes,
                         std::vector<double>& arcLength) {
   for (int l = 0; l < int(geo.loops().size()); ++l) {
@@ -218,15 +250,11 @@ void placeBoundaryNodes(const DomainGeometry& geo, const MetricField& metric, No
     metric.evaluate(poly.points, pm);
     std::vector<Vec2> sub;
     std::vector<double> subS;
+    int hint = -1;
     for (int k = 0; k < n; ++k) {
       const Vec2& a = poly.points[k];
       const Vec2& b = poly.points[(k + 1) % n];
-      const double est = edgeLength(a, pm[k], b, pm[(k + 1) % n]);
-      const int m = std::clamp(int(std::ceil(4 * est)), 1, 1 << 16);
-      for (int i = 0; i < m; ++i) {
-        sub.push_back(a + (double(i) / m) * (b - a));
-        subS.push_back(poly.cum[k] + (double(i) / m) * (poly.cum[k + 1] - poly.cum[k]));
-      }
+      sampleBoundaryPiece(metric, a, pm[k], poly.cum[k], b, pm[(k + 1) % n], poly.cum[k + 1], 0, hint, sub, subS);
     }
     sub.push_back(poly.points[0]);
     subS.push_back(poly.length);

@@ -2,6 +2,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
+#include "ablmg/mesher/slit_domain.hpp"
 
 namespace ablmg::mesher {
 namespace {
@@ -19,7 +20,34 @@ double expectedArea(const Domain& domain, const Mesh2& mesh) {
 
 }  // namespace
 
+MeshOptions meshPreset(MeshPreset preset) {
+  MeshOptions m;
+  if (preset == MeshPreset::Mesh) return m;
+  m.placement.plateauSteps = 10;
+  m.placement.plateauGain = 0.01;
+  if (preset == MeshPreset::Remesh) {
+    m.placement.finalRelaxSteps = 0;
+  } else {
+    m.placement.lattice.orientation = LatticeOrientation::ShortAxis;
+    m.placement.defectPasses = 0;
+  }
+  return m;
+}
+
+MeshPreset parseMeshPreset(const std::string& name) {
+  if (name == "mesh") return MeshPreset::Mesh;
+  if (name == "remesh") return MeshPreset::Remesh;
+  if (name == "adapt") return MeshPreset::Adapt;
+  ABLMG_REQUIRE(false, "mesher preset: expected mesh, remesh or adapt, got '" << name << "'");
+  return MeshPreset::Mesh;
+}
+
+const char* meshPresetName(MeshPreset preset) {
+  return preset == MeshPreset::Mesh ? "mesh" : preset == MeshPreset::Remesh ? "remesh" : "adapt";
+}
+
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
+  if (domain.hasSlits()) return meshSlitDomain(domain, metric, options);  // cut, meshed piece by piece
   const auto report = [&](const char* stage, long nodes) {
     if (options.progress) options.progress({.stage = stage, .nodes = nodes});
   };

@@ -16,6 +16,8 @@
 #include "ablmg/mesher/improve.hpp"
 #include "ablmg/mesher/place_nodes.hpp"
 
+#include <string>
+
 namespace ablmg::mesher {
 
 struct MeshOptions {
@@ -41,7 +43,35 @@ struct MeshResult {
   MeshStats stats;
 };
 
-/// Meshes `domain` so that edges have unit length in `metric` (paper §3–4).
+/// The mesher's three configurations, one per use; every entry point starts from one of them
+/// (`ablmg mesh|remesh|adapt --print-options` shows the options in effect). They differ in four
+/// fields of PlacementOptions, all else being MeshOptions{}'s:
+///
+///   field                        Mesh (meshDomain)  Remesh (adapt::remesh)  Adapt (adaptive loop)
+///   plateauSteps / plateauGain   0 (off)            10 / 0.01               10 / 0.01
+///   finalRelaxSteps              10                 0                       10
+///   defectPasses                 6                  6                       0
+///   lattice.orientation          Axes               Axes                    ShortAxis
+///
+/// - Mesh (`ablmg mesh`, the paper's cases): runs to the residual target; the packing is the
+///   product, so defect annealing and a final relaxation are worth their steps.
+/// - Remesh (`ablmg remesh`, the C API, Python's remesh): a metric from a solver rarely lets the
+///   residual settle, so placement stops on the quality plateau; the final relaxation's 10
+///   steps cost 12 % of a remesh for +0.4 point of edges within ±10 % and are skipped.
+/// - Adapt (`ablmg adapt`): plateau stop as Remesh; the lattice starts with one row along each
+///   node's short-size direction (the Hessian's steep eigenvector), since the P1 gradient error
+///   of a metric-equilateral triangle depends on its orientation and the dynamics keep the
+///   orientation they start from; no defect annealing, which does not lower the FE error.
+/// Measurements: docs/method.md.
+enum class MeshPreset { Mesh, Remesh, Adapt };
+MeshOptions meshPreset(MeshPreset preset);
+/// "mesh", "remesh", "adapt"; InputError naming the valid ones otherwise.
+MeshPreset parseMeshPreset(const std::string& name);
+const char* meshPresetName(MeshPreset preset);
+
+/// Meshes `domain` so that edges have unit length in `metric` (paper §3–4). A domain with slits
+/// (Domain::hasSlits) is cut and meshed piece by piece (mesher/slit_domain.hpp): the lips get
+/// distinct vertices.
 MeshResult meshDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options = {});
 
 }  // namespace ablmg::mesher

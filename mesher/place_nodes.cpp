@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 
 namespace ablmg::mesher {
@@ -91,6 +92,43 @@ void zOrder(NodeSet& nodes, int first) {
     nodes.kinds[to] = old.kinds[from];
     nodes.loops[to] = old.loops[from];
     nodes.arc[to] = old.arc[from];
+  }
+}
+
+/// splitmix64 (Steele, Lea, Flood 2014): a counter-based generator, so the draw of node k
+/// depends on (seed, k) only, not on the order or the thread that asks.
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double unitDraw(std::uint64_t seed, std::uint64_t counter) {
+  return double(splitmix64(splitmix64(seed) ^ counter) >> 11) * 0x1.0p-53;  // [0, 1)
+}
+
+/// PlacementOptions::seed: each interior node first in [first, size) moves by a draw uniform
+/// in the metric disk of radius kSeedJitter around it (node k's draw depends on (seed, k)
+/// only); a move that would leave the domain or come within 0.5 metric units of its boundary
+/// is not made. Seed 0 leaves the nodes where they are.
+void jitterInterior(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, int first,
+                    std::uint64_t seed) {
+  constexpr double kSeedJitter = 0.1;  // metric units: the dynamics relax it in a few steps
+  const int n = nodes.size();
+  if (seed == 0 || n <= first) return;
+  std::vector<Vec2> pts(nodes.positions.begin() + first, nodes.positions.end());
+  std::vector<Metric2> ms(pts.size());
+  metric.evaluate(pts, ms);
+  for (int i = first; i < n; ++i) {
+    const std::size_t k = std::size_t(i - first);
+    const double r = kSeedJitter * std::sqrt(unitDraw(seed, 2 * k)),
+                 phi = 2 * std::numbers::pi * unitDraw(seed, 2 * k + 1);
+    const MetricEigen e = ms[k].eigen();
+    const Vec2 u(r * std::cos(phi) * e.h1, r * std::sin(phi) * e.h2);
+    const double c = std::cos(e.theta), s = std::sin(e.theta);
+    const Vec2 p = pts[k] + Vec2(c * u.x() - s * u.y(), s * u.x() + c * u.y());
+    if (geo.inside(p) && geo.metricDistanceToBoundary(p, ms[k], reachBox(ms[k], 0.5)) >= 0.5) nodes.positions[i] = p;
   }
 }
 
@@ -194,6 +232,7 @@ BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
   const double spacing = std::sqrt(domain.area() / std::max<double>(st_.predictedNodes, 1.0));
   const int firstInterior = nodes.size();
   placeInteriorNodes(geo_, metric_, nodes, spacing, o_.lattice, o_.warmStart);
+  jitterInterior(geo_, metric_, nodes, firstInterior, o_.seed);
   zOrder(nodes, firstInterior);
   arc.resize(nodes.size(), -1.0);
   BubbleSystem sys(geo_, std::move(nodes), std::move(arc));

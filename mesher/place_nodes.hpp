@@ -28,7 +28,7 @@
 ///
 /// Output: no two nodes share a point (node_set.hpp, coincidentNodes). Deterministic: same
 /// domain, metric and options ⇒ bit-identical result, for any number of threads (no floating
-/// reductions across threads; nothing random is drawn).
+/// reductions across threads; the seed's draws depend on the seed and the node only).
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"
 #include "ablmg/core/progress.hpp"
@@ -102,8 +102,13 @@ struct PlacementOptions {
   double defectShake = 0.3;  ///< kick, metric units, in [0, 0.5] (0.4 already melts the packing)
   double defectMinShare = 0.05;
   long maxNodes = 50'000'000;  ///< refuse (InputError, before allocating) if the estimate N* exceeds this
-  std::uint64_t seed = 1;      ///< for any randomised choice; same seed, same nodes
-  int threads = 0;             ///< 0 = OpenMP default
+  /// 0: the initial interior nodes as placed (§3.1). s > 0: each is first moved by a draw
+  /// uniform in its metric disk of radius 0.1 (place_nodes.cpp, jitterInterior; a move that
+  /// would come within 0.5 of the boundary is not made), so two seeds give two different
+  /// meshes of the same statistics, e.g. to see how much a result owes to one mesh. Same seed,
+  /// same nodes, on any thread count.
+  std::uint64_t seed = 0;
+  int threads = 0;  ///< 0 = OpenMP default
   /// Not read by placeNodes: a request to callers that mesh (`ablmg mesh` then writes the
   /// packing, the bubbles over the domain, instead of connecting it).
   bool bubblesOnly = false;

@@ -1,6 +1,7 @@
 // ablmg.Mesh, ablmg.Domain, ablmg.MeshOptions; ablmg.mesh, ablmg.uniform_mesh, ablmg.remesh.
 #include "ablmg/adapt/adaptive_loop.hpp"
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/adapt/metric_snap.hpp"
 #include "ablmg/cli/stats_json.hpp"
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/error.hpp"
@@ -121,11 +122,9 @@ std::optional<Metric2> constantMetric(const py::handle& metric) {
 }
 
 mesher::MeshOptions preset(const std::string& name) {
-  if (name == "mesh") return {};
-  if (name == "remesh") return adapt::RemeshOptions{}.mesh;
-  if (name == "adapt") return adapt::AdaptOptions{}.mesh;
-  ABLMG_REQUIRE(false, "MeshOptions: preset must be 'mesh', 'remesh' or 'adapt', got '" << name << "'");
-  return {};
+  ABLMG_REQUIRE(name == "mesh" || name == "remesh" || name == "adapt",
+                "MeshOptions: preset must be 'mesh', 'remesh' or 'adapt', got '" << name << "'");
+  return mesher::meshPreset(mesher::parseMeshPreset(name));
 }
 
 /// options (a MeshOptions or None → the preset), then the seed and lattice shortcuts.
@@ -164,7 +163,8 @@ py::array loopPoints(const BoundaryLoop& l) {
 }
 
 const char* kRemeshDoc = R"(remesh(points, triangles, metric, boundary_edges=None, boundary_refs=None, *,
-       hmin=None, hmax=None, hgrad=None, seed=None, lattice=None, options=None, domain=None) -> Mesh
+       hmin=None, hmax=None, hgrad=None, seed=None, lattice=None, options=None, domain=None,
+       metric_quantum=None) -> Mesh
 remesh(mesh, metric=None, **same keywords) -> Mesh
 
 Remeshes the domain covered by a triangle mesh so that edges have unit length in a
@@ -181,12 +181,17 @@ per-vertex metric: the call a solver makes between two solves (adapt/remesh.hpp;
   hmin, hmax      clamp the sizes of the metric to [hmin, hmax] (defaults 0, inf)
   hgrad           size gradation beta > 1 on the input mesh after the clamp (default 1.3,
                   MMG's); <= 0 (e.g. -1): none
-  seed            placement seed (default 1); lattice: 'axes' (default), 'short', 'long'
+  seed            placement seed (default 0: no jitter; s > 0: another mesh of the same
+                  statistics, the same for the same s); lattice: 'axes' (default), 'short', 'long'
   options         a MeshOptions (default MeshOptions('remesh'))
   domain          a Domain the mesh covers (e.g. the exact polygon of the problem): meshed
                   instead of the domain rebuilt from the mesh's boundary loops; the metric is
                   then used as given (hmin, hmax, hgrad must stay None), as the adaptive loop
                   of `ablmg adapt` does.
+  metric_quantum  > 0: the metric is first snapped to a grid of this step (log2 of its
+                  eigenvalues, its angle; adapt/metric_snap.hpp), so that metrics differing
+                  by round-off (e.g. the solutions of 1 and 2 MPI ranks) give the same mesh;
+                  2**-8 changes the sizes by < 0.07 %. Default None: used as given.
 
 The second form takes an ablmg.Mesh (e.g. from read_mesh) with everything it carries besides
 the arrays (corners, required vertices and edges, ridges, interface edges of a medit file) and
@@ -349,7 +354,7 @@ any field below by keyword. Values are range-checked when a mesh is made.)")
       .def_property(
           "seed", [](const mesher::MeshOptions& o) { return o.placement.seed; },
           [](mesher::MeshOptions& o, std::uint64_t s) { o.placement.seed = s; },
-          "placement seed (same seed, same mesh)")
+          "placement seed: 0 = the nodes as placed, s > 0 = jittered by (s, node) (same seed, same mesh)")
       .def_property(
           "lattice",
           [](const mesher::MeshOptions& o) {
@@ -464,7 +469,7 @@ default to MeshOptions('adapt').)",
       [](py::handle points, py::handle triangles, py::handle metric, py::handle edges, py::handle refs,
          std::optional<double> hmin, std::optional<double> hmax, std::optional<double> hgrad,
          std::optional<long long> seed, std::optional<std::string> lattice, std::optional<mesher::MeshOptions> options,
-         std::optional<Domain> domain) {
+         std::optional<Domain> domain, std::optional<double> metricQuantum) {
         Mesh2 mesh;
         std::vector<Metric2> metrics;
         if (py::isinstance<PyMesh>(points)) {  // remesh(mesh, metric=None): every field of the Mesh
@@ -482,6 +487,11 @@ default to MeshOptions('adapt').)",
             throw py::type_error("remesh: needs points, triangles and metric (or a Mesh), got None");
           mesh = toMesh(points, triangles, edges, refs, true, "remesh");
           metrics = toMetrics(metric, "metric", mesh.numVertices());
+        }
+        if (metricQuantum) {
+          ABLMG_REQUIRE(std::isfinite(*metricQuantum) && *metricQuantum > 0,
+                        "remesh: metric_quantum must be > 0, got " << *metricQuantum);
+          adapt::snapMetrics(metrics, *metricQuantum);
         }
         adapt::RemeshOptions o;
         o.mesh = resolveOptions(options, "remesh", seed, lattice);
@@ -520,7 +530,7 @@ default to MeshOptions('adapt').)",
       py::arg("boundary_edges") = py::none(), py::arg("boundary_refs") = py::none(), py::kw_only(),
       py::arg("hmin") = py::none(), py::arg("hmax") = py::none(), py::arg("hgrad") = py::none(),
       py::arg("seed") = py::none(), py::arg("lattice") = py::none(), py::arg("options") = py::none(),
-      py::arg("domain") = py::none());
+      py::arg("domain") = py::none(), py::arg("metric_quantum") = py::none());
 }
 
 }  // namespace ablmg::python

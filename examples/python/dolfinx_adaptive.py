@@ -194,7 +194,7 @@ def wait_for_root():
 
 # --- 4. The loop --------------------------------------------------------------------------------
 
-def run_loop(problem, targets, out_dir, verify=False, errors=True):
+def run_loop(problem, targets, out_dir, verify=False, errors=True, metric_quantum=None):
     domain = ablmg.Domain.problem(problem.name)
     options = ablmg.MeshOptions("adapt")
     rows = []
@@ -236,7 +236,7 @@ def run_loop(problem, targets, out_dir, verify=False, errors=True):
         if ROOT:
             metric = ablmg.hessian_metric(m.points, m.triangles, u, targets[k + 1])
             m = ablmg.remesh(m.points, m.triangles, metric, m.boundary_edges, m.boundary_refs, domain=domain,
-                             options=options)
+                             options=options, metric_quantum=metric_quantum)
         t_mesh = time.perf_counter() - t0
     if ROOT:
         write_csv(out_dir / f"{problem.name}.csv", rows)
@@ -335,6 +335,10 @@ def main():
     ap.add_argument("--reference-error-tol", type=float, default=0.01,
                     help="relative tolerance on the errors against --reference after cycle 0 (default 1 %%)")
     ap.add_argument("--check", action="store_true", help="assert the properties the CTest tests check")
+    ap.add_argument("--metric-quantum", type=float, default=None,
+                    help="snap the metric to a grid of this step before remeshing (e.g. 0.00390625 = 2^-8; "
+                         "adapt/metric_snap.hpp), so that the round-off of a distributed solve cannot change "
+                         "the mesh; off by default, as in ablmg adapt, whose meshes the default run reproduces")
     ap.add_argument("--no-errors", action="store_true", help="skip the error norms (timing runs at 10^6)")
     args = ap.parse_args()
     targets = [float(t) for t in args.target_vertices.split(",")]
@@ -348,7 +352,8 @@ def main():
         problem = PROBLEMS[name]
         if ROOT:
             print(f"== {name}", flush=True)
-        rows = run_loop(problem, targets, out_dir, verify=args.check, errors=not args.no_errors)
+        rows = run_loop(problem, targets, out_dir, verify=args.check, errors=not args.no_errors,
+                        metric_quantum=args.metric_quantum)
         table = compare(problem, targets, rows, out_dir, args.ablmg) if args.compare else None
         if not (ROOT and args.check):
             continue

@@ -150,3 +150,34 @@ TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   EXPECT_LT(r.l2Rate, -0.8);
   EXPECT_LT(r.h1Rate, -0.4);
 }
+
+TEST(AdaptiveLoop, SlitProblemKeepsTheLipsApartAtTheOptimalH1Rate) {
+  // Mitchell's reentrant corner with ω = 2π: u = √r sin(θ/2) on (−1,1)² cut along [0,1)×{0}.
+  // Every mesh keeps the lips apart (upper lip tag 1, lower lip tag 7: no vertex shared but the
+  // tip, no edge from a lip vertex to the other side), and the H1 error falls at ≈ N^(−1/2).
+  const fem::TestProblem p = fem::makeProblem("reentrant", {{"omega", 2 * M_PI}});
+  AdaptOptions o;
+  o.targetVertices = geometricSchedule(2000, {.startVertices = 250});  // 250 ×2, 500 ×2, 1000 ×2, 2000 ×2
+  int crossing = 0, sharedLip = 0;
+  const auto report = runAdaptiveLoop(p, o, [&](const CycleData& c) {
+    ASSERT_TRUE(c.mesh.validate().ok) << c.mesh.validate().firstProblem;
+    std::vector<char> upper(std::size_t(c.mesh.numVertices()), 0), lower(upper);
+    for (const auto& e : c.mesh.boundaryEdges) {
+      if (e.ref == 1) upper[std::size_t(e.a)] = upper[std::size_t(e.b)] = 1;
+      if (e.ref == 7) lower[std::size_t(e.a)] = lower[std::size_t(e.b)] = 1;
+    }
+    for (int v = 0; v < c.mesh.numVertices(); ++v)
+      sharedLip += upper[std::size_t(v)] && lower[std::size_t(v)] && c.mesh.vertices[std::size_t(v)] != Vec2(0, 0);
+    for (const auto& e : c.mesh.edges())
+      for (int k = 0; k < 2; ++k) {
+        const std::size_t v = std::size_t(e[k]);
+        const double y = c.mesh.vertices[std::size_t(e[1 - k])].y();
+        const bool tip = upper[v] && lower[v];
+        crossing += !tip && ((upper[v] && y < 0) || (lower[v] && y > 0));
+      }
+  });
+  EXPECT_EQ(sharedLip, 0);
+  EXPECT_EQ(crossing, 0);
+  EXPECT_TRUE(report.errorsDecrease);
+  EXPECT_LE(report.h1Rate, -0.45);
+}

@@ -3,10 +3,12 @@
 // compared in tests/capi/capi.cmake); 0- and 1-based indices and either orientation give the
 // same result; every hostile input of docs/hostile_inputs.md that arrays can carry gets its
 // own status code and a message naming the array, index or value, and leaves the handle usable;
-// getters refuse wrong counts; the seed and threads options keep the result deterministic.
+// getters refuse wrong counts; the seed and threads options keep the result deterministic;
+// ablmg_transfer reproduces linear fields, keeps integrals and refuses bad calls.
 #include "ablmg/capi/ablmg.h"
 
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/adapt/transfer.hpp"
 #include "ablmg/io/medit.hpp"
 
 #include <gtest/gtest.h>
@@ -110,7 +112,7 @@ adapt::RemeshResult cliRemesh(const std::string& base) {
   auto metric = io::readSol(dir + "/" + base + ".sol", mesh.numVertices());
   adapt::RemeshOptions options;
   options.name = base;
-  options.mesh.placement.seed = 1;
+  options.mesh.placement.seed = 0;  // ablmg remesh's default
   return adapt::remesh(std::move(mesh), std::move(metric), options);
 }
 
@@ -407,4 +409,113 @@ TEST(CApi, GettersRefuseWrongCountsAndAFailedRunDropsTheResult) {
   ASSERT_EQ(ablmg_set_double(h.get(), ABLMG_HMIN, 0), ABLMG_OK);
   EXPECT_EQ(ablmg_remesh(h.get()), ABLMG_OK) << ablmg_last_error(h.get());
   EXPECT_STREQ(ablmg_version(), "0.2.0");
+}
+
+namespace {
+
+/// Field f of `count` vertices at (x, y) (field-major, as ablmg_transfer takes them).
+std::vector<double> sampleFields(const std::vector<double>& xy, int count) {
+  std::vector<double> u(3 * std::size_t(count));
+  for (int i = 0; i < count; ++i) {
+    const double x = xy[2 * std::size_t(i)], y = xy[2 * std::size_t(i) + 1];
+    u[std::size_t(i)] = 1 + 2 * x - 3 * y;                              // linear
+    u[std::size_t(count + i)] = 2 + std::sin(3 * x) * std::cos(2 * y);  // smooth
+    u[std::size_t(2 * count + i)] = x + 0.1 * y > 0.5 ? 1.0 : 0.0;      // a jump
+  }
+  return u;
+}
+
+Eigen::VectorXd fieldOf(const std::vector<double>& u, int f, int count) {
+  return Eigen::Map<const Eigen::VectorXd>(u.data() + std::size_t(f) * std::size_t(count), count);
+}
+
+}  // namespace
+
+TEST(CApi, TransferReproducesLinearFieldsAndKeepsTheIntegral) {
+  const Arrays a = fileArrays("freefem");
+  Handle h(ablmg_create());
+  ASSERT_EQ(setAll(h.get(), a), ABLMG_OK);
+  ASSERT_EQ(ablmg_remesh(h.get()), ABLMG_OK) << ablmg_last_error(h.get());
+  const auto [mesh, metric] = resultOf(h.get());
+  const int nNew = mesh.numVertices();
+  std::vector<double> newXy;
+  for (const Vec2& p : mesh.vertices) newXy.insert(newXy.end(), {p.x(), p.y()});
+  const std::vector<double> old = sampleFields(a.xy, a.n), exact = sampleFields(newXy, nNew);
+  Mesh2 source = io::readMesh(std::string(ABLMG_TEST_DATA) + "/freefem.mesh");
+  for (int method : {ABLMG_TRANSFER_INTERPOLATION, ABLMG_TRANSFER_PROJECTION, ABLMG_TRANSFER_PROJECTION_BOUNDED}) {
+    SCOPED_TRACE(method);
+    std::vector<double> out(3 * std::size_t(nNew), -99.0);
+    ablmg_transfer_stats s{};
+    ASSERT_EQ(ablmg_transfer(h.get(), old.data(), a.n, 3, method, out.data(), nNew, &s), ABLMG_OK)
+        << ablmg_last_error(h.get());
+    if (method != ABLMG_TRANSFER_PROJECTION_BOUNDED)  // linear fields are reproduced
+      for (int i = 0; i < nNew; ++i) EXPECT_NEAR(out[std::size_t(i)], exact[std::size_t(i)], 1e-12) << i;
+    if (method == ABLMG_TRANSFER_INTERPOLATION) continue;
+    EXPECT_NEAR(s.supermesh_area, mesh.area(), 1e-12 * mesh.area());
+    EXPECT_GT(s.supermesh_pieces, nNew);
+    EXPECT_LT(s.relative_mass_defect, 1e-12);
+    for (int f = 0; f < 3; ++f) {  // the integrals, computed on each mesh on its own
+      const double before = adapt::integrate(source, fieldOf(old, f, a.n));
+      EXPECT_NEAR(adapt::integrate(mesh, fieldOf(out, f, nNew)), before, 1e-12 * std::abs(before)) << f;
+    }
+    if (method == ABLMG_TRANSFER_PROJECTION_BOUNDED)  // the jump stays within [0, 1]
+      for (int i = 0; i < nNew; ++i) {
+        EXPECT_GE(out[std::size_t(2 * nNew + i)], 0.0) << i;
+        EXPECT_LE(out[std::size_t(2 * nNew + i)], 1.0) << i;
+      }
+  }
+}
+
+TEST(CApi, TransferRefusesBadCallsAndKeepsItsSource) {
+  const Arrays a = fileArrays("freefem");
+  Handle h(ablmg_create());
+  ASSERT_EQ(setAll(h.get(), a), ABLMG_OK);
+  std::vector<double> old = sampleFields(a.xy, a.n), out(3 * std::size_t(a.n) + 10000, 7.0);
+  EXPECT_EQ(ablmg_transfer(h.get(), old.data(), a.n, 1, 0, out.data(), a.n, nullptr), ABLMG_ERR_STATE);
+  ASSERT_EQ(ablmg_remesh(h.get()), ABLMG_OK);
+  int nNew = 0;
+  ASSERT_EQ(ablmg_get_sizes(h.get(), &nNew, nullptr, nullptr), ABLMG_OK);
+  const auto code = [&](const double* in, int nOld, int nfields, int method, double* o, int n) {
+    return ablmg_transfer(h.get(), in, nOld, nfields, method, o, n, nullptr);
+  };
+  EXPECT_EQ(code(nullptr, a.n, 1, 0, out.data(), nNew), ABLMG_ERR_NULL);
+  EXPECT_EQ(code(old.data(), a.n, 1, 0, nullptr, nNew), ABLMG_ERR_NULL);
+  EXPECT_EQ(code(old.data(), a.n - 1, 1, 0, out.data(), nNew), ABLMG_ERR_ARGUMENT);
+  EXPECT_NE(std::string(ablmg_last_error(h.get())).find("n_old"), std::string::npos);
+  EXPECT_EQ(code(old.data(), a.n, 1, 0, out.data(), nNew + 1), ABLMG_ERR_CAPACITY);
+  EXPECT_EQ(code(old.data(), a.n, 0, 0, out.data(), nNew), ABLMG_ERR_ARGUMENT);
+  EXPECT_EQ(code(old.data(), a.n, 1, 3, out.data(), nNew), ABLMG_ERR_ARGUMENT);
+  EXPECT_EQ(code(old.data(), a.n, 1, -1, out.data(), nNew), ABLMG_ERR_ARGUMENT);
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    old[std::size_t(a.n + 2)] = bad;  // field 1, vertex 2
+    EXPECT_EQ(code(old.data(), a.n, 2, 1, out.data(), nNew), ABLMG_ERR_INPUT);
+    EXPECT_NE(std::string(ablmg_last_error(h.get())).find("field 1 at vertex 2"), std::string::npos)
+        << ablmg_last_error(h.get());
+  }
+  for (double v : out) EXPECT_EQ(v, 7.0);  // untouched by the failed calls
+  // New input arrays do not change the source of the last result.
+  const Arrays b = smallSquare();
+  ASSERT_EQ(setAll(h.get(), b), ABLMG_OK);
+  old = sampleFields(a.xy, a.n);
+  EXPECT_EQ(code(old.data(), a.n, 1, 1, out.data(), nNew), ABLMG_OK) << ablmg_last_error(h.get());
+}
+
+TEST(CApi, MetricQuantumAbsorbsRoundOffInTheMetric) {
+  const Arrays a = fileArrays("freefem");
+  Arrays b = a;  // the metric moved by ~1e-11 relative, as another solver's round-off would
+  for (std::size_t i = 0; i < b.metric.size(); ++i) b.metric[i] *= 1 + 1e-11 * std::sin(double(i));
+  std::vector<Mesh2> meshes;
+  for (double quantum : {0.0, 0x1.0p-8})
+    for (const Arrays* in : {&a, static_cast<const Arrays*>(&b)}) {
+      Handle h(ablmg_create());
+      ASSERT_EQ(setAll(h.get(), *in), ABLMG_OK);
+      ASSERT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, quantum), ABLMG_OK);
+      ASSERT_EQ(ablmg_remesh(h.get()), ABLMG_OK) << ablmg_last_error(h.get());
+      meshes.push_back(resultOf(h.get()).first);
+    }
+  EXPECT_NE(meshes[0].vertices, meshes[1].vertices);  // the placement is chaotic in its input
+  expectSameMesh(meshes[2], meshes[3]);
+  Handle h(ablmg_create());
+  EXPECT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, -1), ABLMG_ERR_ARGUMENT);
+  EXPECT_EQ(ablmg_set_double(h.get(), ABLMG_METRIC_QUANTUM, std::nan("")), ABLMG_ERR_ARGUMENT);
 }

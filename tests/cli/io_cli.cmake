@@ -78,3 +78,23 @@ add_test(NAME cli.mesh_disk_bubbles COMMAND ablmg mesh ${_out}/disk.json --bubbl
 set_tests_properties(cli.mesh_disk_bubbles PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "vertices, 0 triangles")
 add_test(NAME cli.mesh_disk COMMAND ablmg mesh ${_out}/disk.json -o ${_out}/disk.mesh -o ${_out}/disk.png --report ${_out}/disk_report.json)
 set_tests_properties(cli.mesh_disk PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")
+# Slits in a JSON domain: meshed with the lips apart (each lip's tag on the output), and a slit
+# that leaves the domain named by its key.
+file(WRITE ${_out}/slit.json "{\"domain\": {\"rectangle\": [-1, -1, 1, 1], \"slits\": [{\"points\": [[1, 0], [0, 0]], \"tags\": [7, 8]},"
+                             " {\"points\": [[-0.5, 0.5], [-0.5, -0.5]], \"tags\": [9, 9]}]}, \"metric\": {\"h\": \"0.1\"}}\n")
+add_test(NAME cli.mesh_slit COMMAND ablmg mesh ${_out}/slit.json -o ${_out}/slit.mesh -v 0)
+set_tests_properties(cli.mesh_slit PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in")
+file(WRITE ${_out}/bad_slit.json "{\"domain\": {\"rectangle\": [-1, -1, 1, 1], \"slits\": [{\"points\": [[1, 0], [2, 0]]}]}, \"metric\": {\"h\": \"0.1\"}}\n")
+ablmg_cli_failure(mesh_slit_outside "bad_slit.json: domain.slits\\[0\\]: domain: slit point 0 \\(1, 0\\): the slit leaves the domain" mesh ${_out}/bad_slit.json -o ${_out}/mesh_bad_slit.mesh)
+ablmg_cli_failure(remesh_negative_metric_quantum "remesh: --metric-quantum must be >= 0 \\(0 = off\\), got -1"
+                  remesh -in ${_data}/square.mesh --metric-quantum -1 -out ${_out}/remesh_negative_metric_quantum.mesh)
+# A required vertex outside the domain (used by no triangle), and interface Edges that cross
+# (the second is no side of a triangle): clean errors naming the file.
+file(WRITE ${_out}/required_outside.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n5 5 0\n"
+                                         "Triangles\n2\n1 2 3 1\n1 3 4 1\nRequiredVertices\n1\n5\nEnd\n")
+ablmg_cli_failure(remesh_required_outside "required_outside.mesh: invalid mesh: vertex [0-9]+ is used by no triangle"
+                  remesh -in ${_out}/required_outside.mesh -hsiz 0.2 -out ${_out}/remesh_required_outside.mesh)
+file(WRITE ${_out}/crossing_interfaces.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                            "Triangles\n2\n1 2 3 1\n1 3 4 1\nEdges\n2\n1 3 5\n2 4 6\nEnd\n")
+ablmg_cli_failure(remesh_crossing_interfaces "crossing_interfaces.mesh: edge \\(2, 4\\) of Edges is a side of no triangle"
+                  remesh -in ${_out}/crossing_interfaces.mesh -hsiz 0.2 -out ${_out}/remesh_crossing_interfaces.mesh)

@@ -122,3 +122,6 @@ file(WRITE ${_hdir}/lonely_edge.mesh "${_sq}Edges\n1\n1 3 1\nTriangles\n2\n1 2 5
 ablmg_cli_failure(hostile_edge_in_no_triangle "lonely_edge.mesh: edge \\(1, 3\\) of Edges is a side of no triangle"
                   remesh -in ${_hdir}/lonely_edge.mesh -hsiz 0.2 -out ${_hdir}/lonely_edge.o.mesh)
 ablmg_cli_failure(hostile_bad_met_field "-met-field" remesh -in ${_hdir}/req_inside.mesh -met-field 0 -out ${_hdir}/x.o.mesh)
+ablmg_hostile_config(bad_preset "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"preset\": \"fast\"}}")
+ablmg_cli_failure(config_bad_preset "bad_preset.json: options.preset: .*expected mesh, remesh or adapt, got 'fast'"
+                  mesh ${_hdir}/bad_preset.json -o ${_hdir}/bad_preset.mesh)

@@ -2,7 +2,8 @@
  * square [0,1]² as two triangles, remesh to a metric given by a function (a layer along the
  * diagonal, sharper each cycle) sampled at the current vertices, three times, feeding each
  * result back. Each result must be valid with the four boundary refs, meet the quality
- * figures and grow; a hostile input (a NaN coordinate) must give ABLMG_ERR_INPUT and leave the
+ * figures and grow, and the linear field u = 1 + x + 2y, carried over by the conservative
+ * transfer (ablmg_transfer), must be reproduced with its integral kept; a hostile input (a NaN coordinate) must give ABLMG_ERR_INPUT and leave the
  * handle usable. Exit 0 and one line per cycle, or 1 and the failed check. */
 #include <ablmg/capi/ablmg.h>
 
@@ -51,6 +52,9 @@ int main(void) {
     if (rc == ABLMG_OK) rc = ablmg_remesh(h);
     free(metric);
     if (rc != ABLMG_OK) return fail(h, "remesh");
+    const int nv_old = nv;
+    double* u_old = malloc(sizeof(double) * (size_t)nv_old);
+    for (int i = 0; i < nv_old; ++i) u_old[i] = 1 + xy[2 * i] + 2 * xy[2 * i + 1];
     if (ablmg_get_sizes(h, &nv, &nt, &ne) != ABLMG_OK) return fail(h, "ablmg_get_sizes");
     xy = realloc(xy, sizeof(double) * 2 * (size_t)nv);
     tri = realloc(tri, sizeof(int) * 3 * (size_t)nt);
@@ -59,6 +63,17 @@ int main(void) {
     if (ablmg_get_vertices(h, xy, NULL, nv) != ABLMG_OK || ablmg_get_triangles(h, tri, NULL, nt, 0) != ABLMG_OK ||
         ablmg_get_edges(h, edges, refs, ne, 0) != ABLMG_OK)
       return fail(h, "getters");
+    double* u_new = malloc(sizeof(double) * (size_t)nv);
+    ablmg_transfer_stats ts;
+    rc = ablmg_transfer(h, u_old, nv_old, 1, ABLMG_TRANSFER_PROJECTION, u_new, nv, &ts);
+    double worst = 0;
+    for (int i = 0; rc == ABLMG_OK && i < nv; ++i)
+      worst = fmax(worst, fabs(u_new[i] - (1 + xy[2 * i] + 2 * xy[2 * i + 1])));
+    free(u_old);
+    free(u_new);
+    if (rc != ABLMG_OK) return fail(h, "ablmg_transfer");
+    if (!(worst < 1e-10 && ts.relative_mass_defect < 1e-12 && fabs(ts.supermesh_area - 1) < 1e-12))
+      return fail(h, "the transfer did not reproduce u = 1 + x + 2y with its integral");
     ablmg_quality q;
     if (ablmg_get_quality(h, &q) != ABLMG_OK) return fail(h, "ablmg_get_quality");
     int seen[5] = {0, 0, 0, 0, 0};

@@ -195,3 +195,53 @@ TEST(PointLocator, CrowdedCellsOfAGradedStretchedMesh) {
     for (int c = 0; c < 3; ++c) EXPECT_GE(orient2d(m.vertices[t[(c + 1) % 3]], m.vertices[t[(c + 2) % 3]], p), 0.0);
   }
 }
+
+// An L-shaped mesh whose triangles above the re-entrant corner come first: the start triangle
+// of a grid cell straddling the corner (its lowest id) then lies across the notch from points
+// of the lower-left part, and the straight walk from it leaves the mesh through the notch. Such
+// points are inside and must be found inside (the walk's exit edge, next to the corner, once gave
+// them the corner's metric: sizes 10× too small over a band around an L-shape's corner, 15 % more
+// nodes and a remesh 100× slower). Points of the notch stay outside, located on the nearest
+// boundary edge's side of the corner.
+TEST(PointLocator, InsidePointsAcrossTheNotchOfAReentrantCorner) {
+  for (const int n : {8, 16, 40}) {
+    Mesh2 full = grid(n, 5), l;
+    for (int k = 0; k <= n / 2; ++k) {  // the notch's edges straight: x = 0.5, y ≤ 0.5 and y = 0.5, x ≥ 0.5
+      full.vertices[std::size_t(k * (n + 1) + n / 2)] = Vec2(0.5, double(k) / n);
+      full.vertices[std::size_t(n / 2 * (n + 1) + n / 2 + k)] = Vec2(0.5 + double(k) / n, 0.5);
+    }
+    l.vertices = full.vertices;
+    std::vector<std::array<int, 3>> first, rest;
+    for (const auto& t : full.triangles) {
+      const Vec2 c = (full.vertices[t[0]] + full.vertices[t[1]] + full.vertices[t[2]]) / 3.0;
+      if (c.x() > 0.5 && c.y() < 0.5) continue;
+      (c.y() > 0.5 ? first : rest).push_back(t);
+    }
+    l.triangles = first;
+    l.triangles.insert(l.triangles.end(), rest.begin(), rest.end());
+    const PointLocator locator(l);
+    std::mt19937_64 rng(6);
+    std::uniform_real_distribution<double> u(0.5 - 3.0 / n, 0.5 + 3.0 / n);
+    int hint = -1, found = 0;
+    for (int k = 0; k < 4000; ++k) {
+      const Vec2 p(u(rng), u(rng));
+      const bool inNotch = p.x() >= 0.5 && p.y() <= 0.5;
+      const auto loc = locator.locate(p, k % 2 ? hint : -1);
+      hint = loc.triangle;
+      if (inNotch) {
+        EXPECT_FALSE(loc.inside) << n << ": " << p.transpose();
+        // Clamped into a boundary triangle next to the nearest boundary point (the clamp of
+        // barycentrics is not the orthogonal projection: within a triangle's size of it).
+        Vec2 q = Vec2::Zero();
+        for (int c = 0; c < 3; ++c) q += loc.bary[c] * l.vertices[l.triangles[loc.triangle][c]];
+        EXPECT_LT((q - p).norm(), std::min(p.x() - 0.5, 0.5 - p.y()) + 1.5 / n) << n << ": " << p.transpose();
+        continue;
+      }
+      ASSERT_TRUE(loc.inside) << n << ": " << p.transpose();
+      const auto& t = l.triangles[loc.triangle];
+      for (int c = 0; c < 3; ++c) EXPECT_GE(orient2d(l.vertices[t[(c + 1) % 3]], l.vertices[t[(c + 2) % 3]], p), 0.0);
+      ++found;
+    }
+    EXPECT_GT(found, 2000) << n;
+  }
+}

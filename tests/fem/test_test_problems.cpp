@@ -71,8 +71,33 @@ TEST(TestProblems, ReentrantCornerForSeveralAngles) {
     EXPECT_GT(p.u(-0.5, 0.1), 0.0);
   }
   EXPECT_EQ(makeProblem("reentrant").params.at("omega"), 1.75 * M_PI);
-  EXPECT_THROW(makeProblem("reentrant", {{"omega", 2 * M_PI}}), InputError);  // the slit: not a polygon here
+  const TestProblem slit = makeProblem("reentrant", {{"omega", 2 * M_PI}});  // the slit: a zero-width gap
+  EXPECT_TRUE(slit.domain.hasSlits());
+  EXPECT_NEAR(slit.domain.area(), 4.0, 1e-15);
+  EXPECT_NEAR(slit.u(0.25, 1e-300), 0.0, 1e-14);  // u = 0 on both lips
+  EXPECT_NEAR(slit.u(0.25, -1e-300), 0.0, 1e-14);
+  EXPECT_NEAR(slit.u(-0.25, 0), 0.5, 1e-14);  // sqrt(r) at θ = π
+  EXPECT_THROW(makeProblem("reentrant", {{"omega", 2 * M_PI + 1e-6}}), InputError);
   EXPECT_THROW(makeProblem("reentrant", {{"omega", 3.0}}), InputError);
+}
+
+TEST(TestProblems, CornerSolutionIsContinuousAcrossRoundOffBelowTheEdgeThetaZero) {
+  // A point of the edge θ = 0 computed with y = −1e−17 (round-off) is on the edge, not at θ ≈ 2π
+  // of the excluded sector: u ≈ 0 there and ∇u as just above the edge.
+  for (const auto& [name, params] : {std::pair<std::string, std::map<std::string, double>>{"lshape", {}},
+                                     {"reentrant", {{"omega", 1.25 * M_PI}}},
+                                     {"reentrant", {}},
+                                     {"multiple", {{"alpha_p", 20}, {"alpha_w", 5}, {"epsilon", 0.3}}}}) {
+    const TestProblem p = makeProblem(name, params);
+    for (const double x : {1e-6, 0.3, 0.9}) {
+      EXPECT_NEAR(p.u(x, -1e-17), p.u(x, 0.0), 1e-12) << name << " x " << x;
+      EXPECT_NEAR((p.grad(x, -1e-17) - p.grad(x, 1e-17)).norm(), 0.0, 1e-9 * p.grad(x, 1e-17).norm()) << name;
+    }
+    // Just past the other edge θ = ω, likewise.
+    const double omega = name == "reentrant" ? p.params.at("omega") : 1.5 * M_PI, t = omega + 1e-15;
+    EXPECT_NEAR(p.u(0.5 * std::cos(t), 0.5 * std::sin(t)), p.u(0.5 * std::cos(omega), 0.5 * std::sin(omega)), 1e-12)
+        << name;
+  }
 }
 
 TEST(TestProblems, LineSingularityAndMultipleDifficulties) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace ablmg;
 static const std::string kData = ABLMG_TEST_DATA;
 
@@ -50,4 +52,35 @@ TEST(Poly, ErrorsNameTheProblem) {
       InputError);
   EXPECT_THROW(io::parsePoly("", "empty.poly"), InputError);
   EXPECT_THROW(io::parsePoly("3 2 0 0\n1 0 0\n2 1 0\n", "trunc.poly"), InputError);
+}
+
+TEST(Poly, SlitsAsHangingChainsOrZeroWidthGaps) {
+  // (−1,1)² with a chain from the right side's midpoint (vertex 5) to the centre (vertex 6),
+  // marker 9: both lips tagged 9; and a free chain 7–8 inside, marker 4.
+  const std::string square =
+      "8 2 0 0\n1 -1 -1\n2 1 -1\n3 1 1\n4 -1 1\n5 1 0\n6 0 0\n7 -0.5 0.5\n8 -0.5 -0.5\n"
+      "7 1\n1 1 2 1\n2 2 5 2\n3 5 3 2\n4 3 4 3\n5 4 1 4\n6 5 6 9\n7 7 8 4\n0\n";
+  const Domain d = io::parsePoly(square, "slit.poly");
+  EXPECT_TRUE(d.hasSlits());
+  EXPECT_NEAR(d.area(), 4.0, 1e-15);
+  ASSERT_EQ(d.loops().size(), 2u);         // the outer loop with its slit, the free slit
+  EXPECT_EQ(d.outer().points.size(), 7u);  // 5 points, the attachment twice, the tip
+  EXPECT_EQ(std::count(d.outer().tags.begin(), d.outer().tags.end(), 9), 2);
+  // The same slit as a zero-width gap: vertex 5 and 7 at (1, 0), lips marked 9 and 10.
+  const std::string gap =
+      "7 2 0 0\n1 -1 -1\n2 1 -1\n3 1 1\n4 -1 1\n5 1 0\n6 0 0\n7 1 0\n"
+      "7 1\n1 1 2 1\n2 2 5 2\n3 5 6 9\n4 6 7 10\n5 7 3 2\n6 3 4 3\n7 4 1 4\n0\n";
+  const Domain g = io::parsePoly(gap, "gap.poly");
+  EXPECT_TRUE(g.hasSlits());
+  EXPECT_EQ(g.loops().size(), 1u);
+  // An open boundary is still an open boundary, not a slit.
+  EXPECT_THROW(io::parsePoly("3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n2 0\n1 1 2\n2 2 3\n0\n", "open.poly"), InputError);
+  // A hanging chain that leaves the domain: named.
+  try {
+    io::parsePoly("5 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 2 0.5\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 3 5\n0\n",
+                  "out.poly");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("from vertex 3 to vertex 5"), std::string::npos) << e.what();
+  }
 }

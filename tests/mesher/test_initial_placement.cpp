@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -152,6 +153,38 @@ TEST(InitialPlacement, GradedBoundaryFollowsTheMetric) {
   for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
     const double piece = std::log((0.05 + 0.2 * xs[k + 1]) / (0.05 + 0.2 * xs[k])) / 0.2;
     EXPECT_NEAR(piece, total / (xs.size() - 1), 0.01);
+  }
+}
+
+TEST(InitialPlacement, LayerNarrowerThanASideIsSampled) {
+  // A layer of sizes down to 10⁻³ and width ~0.02 crossing the left and right sides at
+  // y = 0.513 (between the samples the end metrics ask for), coarse (0.2) at the corners: the metric length of a side is not that of its end
+  // metrics. Every piece of the left side has metric length ≈ 1 (integrated finely here).
+  const Domain d = Domain::rectangle(0, 0, 1, 1);
+  const DomainGeometry geo(d);
+  const std::string h = "0.2-0.199*exp(-((y-0.513)/0.01)^2)";
+  AnalyticMetricField m(AnalyticMetricField::Form::Sizes, h, h, "0");
+  NodeSet nodes;
+  std::vector<double> arc;
+  placeBoundaryNodes(geo, m, nodes, arc);
+  std::vector<double> ys;
+  for (int i = 0; i < nodes.size(); ++i)
+    if (nodes.positions[i].x() == 0.0) ys.push_back(nodes.positions[i].y());
+  std::sort(ys.begin(), ys.end());
+  auto size = [](double y) { return 0.2 - 0.199 * std::exp(-std::pow((y - 0.513) / 0.01, 2)); };
+  auto metricLength = [&](double a, double b) {
+    const int n = 2000;
+    double s = 0;
+    for (int k = 0; k < n; ++k) s += (b - a) / n / size(a + (k + 0.5) * (b - a) / n);
+    return s;
+  };
+  const double total = metricLength(0, 1);
+  ASSERT_GT(total, 6.5);
+  EXPECT_NEAR(double(ys.size() - 1), total, 1.0);
+  for (std::size_t k = 0; k + 1 < ys.size(); ++k) {
+    const double piece = metricLength(ys[k], ys[k + 1]);
+    EXPECT_GT(piece, 0.9) << ys[k];
+    EXPECT_LT(piece, 1.1) << ys[k];
   }
 }
 

@@ -198,6 +198,37 @@ TEST(PlaceNodes, DeterministicAcrossRunsAndThreadCounts) {
   EXPECT_EQ(a.adjacency.ids, c.adjacency.ids);
 }
 
+TEST(PlaceNodes, SeedGivesAnotherPackingOfTheSameQuality) {
+  const Domain d = Domain::rectangle(0, 0, 1, 1);
+  const ConstantMetricField m(Metric2::isotropic(0.05));
+  PlacementOptions o;
+  const PlacementResult r0 = placeNodes(d, m, o);
+  o.seed = 7;
+  const PlacementResult a = placeNodes(d, m, o);
+  o.threads = 2;
+  const PlacementResult b = placeNodes(d, m, o);  // same seed, other thread count: same nodes
+  o.threads = 0;
+  o.seed = 8;
+  const PlacementResult c = placeNodes(d, m, o);
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  EXPECT_EQ(a.nodes.positions, b.nodes.positions);
+  // Different packings: most interior nodes are elsewhere.
+  const auto differ = [](const PlacementResult& x, const PlacementResult& y) {
+    if (x.nodes.size() != y.nodes.size()) return true;
+    int moved = 0;
+    for (int i = 0; i < x.nodes.size(); ++i) moved += x.nodes.positions[i] != y.nodes.positions[i];
+    return moved > x.nodes.size() / 2;
+  };
+  EXPECT_TRUE(differ(r0, a));
+  EXPECT_TRUE(differ(a, c));
+  // The same statistics within noise: node count within 1 %, packing figure within 2 points.
+  for (const PlacementResult* r : {&a, &c}) {
+    EXPECT_NEAR(double(r->nodes.size()), double(r0.nodes.size()), 0.01 * r0.nodes.size());
+    EXPECT_NEAR(r->stats.nearestInRange, r0.stats.nearestInRange, 0.02);
+    EXPECT_GT(r->stats.nearestInRange, 0.9);
+  }
+}
+
 TEST(PlaceNodes, RefusesTooManyNodesBeforeAllocating) {
   PlacementOptions o;
   o.maxNodes = 1000;

@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""The P1 triangle of least H1 interpolation error per unit area for a quadratic with Hessian H.
+
+    scripts/saddle_triangle_shape.py
+
+For H = diag(1, -1) (a saddle, as every harmonic function's) and H = I: the error of
+equilateral triangles at several rotations, the best triangle found (Nelder-Mead from 30 starts),
+and for metrics of aspect sqrt(a) with axes at 45 degrees to H's eigenvectors, the spread of the
+error of their metric-equilateral triangles over the lattice angle.
+"""
+import numpy as np
+from scipy.optimize import minimize
+# error of P1 interpolation of q(x)=0.5 x^T H x on triangle, H1 seminorm squared, per area, for area fixed = sqrt(3)/4 (equilateral side 1)
+rng=np.random.default_rng(0)
+# quadrature exact for quadratics of gradient (degree 2): use 3-point midpoints rule (exact deg 2)
+def err(V,H):
+    x0,x1,x2=V; d1=x1-x0; d2=x2-x0; det=d1[0]*d2[1]-d1[1]*d2[0]; A=abs(det)/2
+    q=lambda x: 0.5*x@H@x
+    Gm=np.array([[d1[0],d2[0]],[d1[1],d2[1]]])
+    # interpolant gradient: solve Gm^T g = [q1-q0,q2-q0]
+    g=np.linalg.solve(Gm.T, np.array([q(x1)-q(x0), q(x2)-q(x0)]))
+    mids=[(x0+x1)/2,(x1+x2)/2,(x2+x0)/2]
+    e=sum(np.sum((H@m-g)**2) for m in mids)/3*A
+    return e/A
+def tri(p):
+    # p = (a,b,c) parametrize triangle with vertices (0,0),(a,0),(b,c) scaled to area sqrt3/4
+    a,b,c=p; V=np.array([[0,0],[a,0],[b,c]],float); A=abs(a*c)/2
+    return V*np.sqrt((np.sqrt(3)/4)/A)
+eq=np.array([[0,0],[1,0],[0.5,np.sqrt(3)/2]])
+for name,H in [("saddle",np.diag([1.,-1.])),("convex",np.diag([1.,1.]))]:
+    best=None
+    for th in np.linspace(0,np.pi/3,7):
+        R=np.array([[np.cos(th),-np.sin(th)],[np.sin(th),np.cos(th)]])
+        print(name,"equilateral rot",round(th,2),err(eq@R.T,H))
+    for k in range(30):
+        p0=rng.uniform(0.3,2,3)
+        r=minimize(lambda p: err(tri(p),H), p0, method='Nelder-Mead',options={'xatol':1e-9,'fatol':1e-12,'maxiter':4000})
+        if best is None or r.fun<best.fun: best=r
+    V=tri(best.x); e=[np.linalg.norm(V[1]-V[0]),np.linalg.norm(V[2]-V[1]),np.linalg.norm(V[0]-V[2])]
+    print(name,"best",best.fun,"edges",np.round(e,3),"verts",np.round(V,3).tolist())
+print("--- metric-equilateral triangles for M with axes at 45deg to H's, aspect sqrt3, versus lattice angle phi")
+H=np.diag([1.,-1.])
+for asp2 in [1.0, 1.5, 2.0, 3.0]:
+    l1=np.sqrt(asp2); l2=1/np.sqrt(asp2)  # eigenvalues of M (det 1)
+    c=np.cos(np.pi/4); R=np.array([[c,-c],[c,c]])
+    M=R@np.diag([l2,l1])@R.T  # small eigenvalue (long size) along (1,1)
+    Lm=np.linalg.cholesky(np.linalg.inv(M))  # maps metric space -> physical
+    es=[]
+    for phi in np.linspace(0,np.pi/3,13):
+        Rp=np.array([[np.cos(phi),-np.sin(phi)],[np.sin(phi),np.cos(phi)]])
+        V=(eq@Rp.T)@Lm.T
+        es.append(err(V,H))
+    print(f"aspect^2 {asp2}: min {min(es):.4f} max {max(es):.4f} mean {np.mean(es):.4f}")
