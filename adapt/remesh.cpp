@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace ablmg::adapt {
 namespace {
@@ -122,7 +123,13 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
                           const mesher::MeshOptions& options) {
   const BackgroundMetricField field(mesh, std::move(metric));
-  return mesher::meshDomain(domain, field, options);
+  const bool subdomains =
+      !mesh.interfaceEdges.empty() || std::adjacent_find(mesh.triangleRefs.begin(), mesh.triangleRefs.end(),
+                                                         std::not_equal_to<>()) != mesh.triangleRefs.end();
+  if (!subdomains) return mesher::meshDomain(domain, field, options);
+  RemeshResult r;  // the subdomains and interfaces are the mesh's: remeshed from it
+  remeshSubdomains(field.mesh(), field, options, "mesh", r);
+  return {std::move(r.mesh), std::move(r.metric), r.stats};
 }
 
 }  // namespace ablmg::adapt

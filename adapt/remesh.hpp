@@ -129,7 +129,10 @@ void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, con
 
 /// meshDomain(domain, BackgroundMetricField(mesh, metric), options): remeshing a domain the
 /// caller knows exactly (e.g. a curved boundary, which the input mesh only approximates).
-/// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop.
+/// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop. A mesh with
+/// subdomains (several triangle refs, or interface edges) is remeshed subdomain by subdomain
+/// (remeshSubdomains): refs, interfaces and slits kept, the boundary then taken from `mesh`
+/// (its polyline), not from `domain`.
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
                           const mesher::MeshOptions& options = {});
 

@@ -165,7 +165,8 @@ TEST(RemeshSubdomains, RepeatedRemeshingOfACurvedInterfaceDoesNotDrift) {
   const auto a0 = areaByRef(mesh);
   std::map<int, double> first;
   for (int cycle = 0; cycle < 10; ++cycle) {
-    RemeshResult r = remesh(std::move(mesh), sizes(mesh, 0.05));
+    auto metric = sizes(mesh, 0.05);  // before the move: argument evaluation order is unspecified
+    RemeshResult r = remesh(std::move(mesh), std::move(metric));
     ASSERT_TRUE(r.mesh.validate().ok) << "cycle " << cycle << ": " << r.mesh.validate().firstProblem;
     mesh = std::move(r.mesh);
     const auto a = areaByRef(mesh);
@@ -292,4 +293,17 @@ TEST(RemeshSubdomains, SlitLipsStayApart) {
   bool tip = false;
   for (const Vec2& v : r.mesh.vertices) tip = tip || v == Vec2(0, 0);
   EXPECT_TRUE(tip);
+}
+
+TEST(RemeshSubdomains, TheLoopsOverloadKeepsSubdomains) {
+  // remesh(domain, mesh, metric), the adaptive loop's call: a mesh with subdomains keeps them.
+  const Mesh2 in = threeRegionSquare(8);
+  const mesher::MeshResult r = remesh(Domain::rectangle(0, 0, 1, 1), in, sizes(in, 0.08));
+  ASSERT_TRUE(r.mesh.validate(1.0, 1e-12).ok) << r.mesh.validate().firstProblem;
+  const auto a0 = areaByRef(in), a1 = areaByRef(r.mesh);
+  ASSERT_EQ(a1.size(), 3u);
+  for (const auto& [ref, a] : a0) EXPECT_NEAR(a1.at(ref), a, 1e-13) << "subdomain " << ref;
+  expectInterfacesCovered(in, r.mesh);
+  expectRefsWhereTheyWere(in, r.mesh);
+  EXPECT_EQ(r.metric.size(), r.mesh.vertices.size());
 }

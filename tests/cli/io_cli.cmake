@@ -88,3 +88,13 @@ file(WRITE ${_out}/bad_slit.json "{\"domain\": {\"rectangle\": [-1, -1, 1, 1], \
 ablmg_cli_failure(mesh_slit_outside "bad_slit.json: domain.slits\\[0\\]: domain: slit point 0 \\(1, 0\\): the slit leaves the domain" mesh ${_out}/bad_slit.json -o ${_out}/mesh_bad_slit.mesh)
 ablmg_cli_failure(remesh_negative_metric_quantum "remesh: --metric-quantum must be >= 0 \\(0 = off\\), got -1"
                   remesh -in ${_data}/square.mesh --metric-quantum -1 -out ${_out}/remesh_negative_metric_quantum.mesh)
+# A required vertex outside the domain (used by no triangle), and interface Edges that cross
+# (the second is no side of a triangle): clean errors naming the file.
+file(WRITE ${_out}/required_outside.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n5 5 0\n"
+                                         "Triangles\n2\n1 2 3 1\n1 3 4 1\nRequiredVertices\n1\n5\nEnd\n")
+ablmg_cli_failure(remesh_required_outside "required_outside.mesh: invalid mesh: vertex [0-9]+ is used by no triangle"
+                  remesh -in ${_out}/required_outside.mesh -hsiz 0.2 -out ${_out}/remesh_required_outside.mesh)
+file(WRITE ${_out}/crossing_interfaces.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+                                            "Triangles\n2\n1 2 3 1\n1 3 4 1\nEdges\n2\n1 3 5\n2 4 6\nEnd\n")
+ablmg_cli_failure(remesh_crossing_interfaces "crossing_interfaces.mesh: edge \\(2, 4\\) of Edges is a side of no triangle"
+                  remesh -in ${_out}/crossing_interfaces.mesh -hsiz 0.2 -out ${_out}/remesh_crossing_interfaces.mesh)

@@ -63,8 +63,8 @@ TEST(Poly, SlitsAsHangingChainsOrZeroWidthGaps) {
   const Domain d = io::parsePoly(square, "slit.poly");
   EXPECT_TRUE(d.hasSlits());
   EXPECT_NEAR(d.area(), 4.0, 1e-15);
-  ASSERT_EQ(d.loops().size(), 2u);               // the outer loop with its slit, the free slit
-  EXPECT_EQ(d.outer().points.size(), 7u);        // 5 points, the attachment twice, the tip
+  ASSERT_EQ(d.loops().size(), 2u);         // the outer loop with its slit, the free slit
+  EXPECT_EQ(d.outer().points.size(), 7u);  // 5 points, the attachment twice, the tip
   EXPECT_EQ(std::count(d.outer().tags.begin(), d.outer().tags.end(), 9), 2);
   // The same slit as a zero-width gap: vertex 5 and 7 at (1, 0), lips marked 9 and 10.
   const std::string gap =
@@ -77,7 +77,8 @@ TEST(Poly, SlitsAsHangingChainsOrZeroWidthGaps) {
   EXPECT_THROW(io::parsePoly("3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n2 0\n1 1 2\n2 2 3\n0\n", "open.poly"), InputError);
   // A hanging chain that leaves the domain: named.
   try {
-    io::parsePoly("5 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 2 0.5\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 3 5\n0\n", "out.poly");
+    io::parsePoly("5 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n5 2 0.5\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 3 5\n0\n",
+                  "out.poly");
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("from vertex 3 to vertex 5"), std::string::npos) << e.what();
