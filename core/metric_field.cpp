@@ -57,13 +57,21 @@ Metric2 BackgroundMetricField::at(const Vec2& p) const { return interpolate(loca
 
 void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const {
   ABLMG_ASSERT(points.size() == out.size() && points.size() == hints.size(), "");
-  const long n = long(points.size());
-#pragma omp parallel for schedule(static) if (n > 256)
-  for (long i = 0; i < n; ++i) {
-    const int h = hints[std::size_t(i)];
-    const auto loc = locator_->locate(points[std::size_t(i)], h >= 0 && h < mesh_.numTriangles() ? h : -1);
-    hints[std::size_t(i)] = loc.triangle;
-    out[std::size_t(i)] = interpolate(loc);
+  // Fixed chunks of consecutive points (the same answers for any thread count); a point
+  // starts at its hint (without one: the chunk's previous answer) or at the grid's start
+  // (PointLocator::startNear), whichever is closer: a stale hint costs no long walk.
+  constexpr long kChunk = 256;
+  const long n = long(points.size()), chunks = (n + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(static) if (n > kChunk)
+  for (long c = 0; c < chunks; ++c) {
+    int previous = -1;
+    for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+      const Vec2& p = points[std::size_t(i)];
+      const int h = hints[std::size_t(i)];
+      const auto loc = locator_->locate(p, locator_->startNear(p, h >= 0 ? h : previous));
+      previous = hints[std::size_t(i)] = loc.triangle;
+      out[std::size_t(i)] = interpolate(loc);
+    }
   }
 }
 
@@ -86,10 +94,10 @@ void BackgroundMetricField::sqrtDeterminants(std::span<const Vec2> points, std::
 }
 
 void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out) const {
-  int hint = -1;
+  int previous = -1;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto loc = locator_->locate(points[i], hint);
-    hint = loc.triangle;
+    const auto loc = locator_->locate(points[i], locator_->startNear(points[i], previous));
+    previous = loc.triangle;
     out[i] = interpolate(loc);
   }
 }

@@ -81,7 +81,9 @@ class BackgroundMetricField final : public MetricField {
   BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check = MeshCheck::Validate);
   Metric2 at(const Vec2& p) const override;
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
-  /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint.
+  /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint
+  /// (without one, −1: the previous answer of its chunk of 256 consecutive points) or from the
+  /// grid, whichever is nearer (PointLocator::startNear).
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out, std::span<int> hints) const override;
   /// det exp(L) = exp(tr L) and tr L is linear in the barycentric weights, so √det M at a point
   /// is exp(½ Σ wₖ tr log Mₖ): no tensor exponential. Points are located in fixed chunks of

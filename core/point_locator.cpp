@@ -174,6 +174,23 @@ int PointLocator::startTriangle(const Vec2& p) const {
   return 0;
 }
 
+double PointLocator::outside(int t, const Vec2& p) const {
+  const auto& tr = mesh_.triangles[std::size_t(t)];
+  const Vec2& a = mesh_.vertices[std::size_t(tr[0])];
+  const Vec2& b = mesh_.vertices[std::size_t(tr[1])];
+  const Vec2& c = mesh_.vertices[std::size_t(tr[2])];
+  const double area2 = signedArea2(a, b, c);
+  return -std::min({signedArea2(p, b, c), signedArea2(a, p, c), signedArea2(a, b, p)}) / area2;
+}
+
+int PointLocator::startNear(const Vec2& p, int previous) const {
+  const bool given = previous >= 0 && previous < mesh_.numTriangles();
+  const double fromPrevious = given ? outside(previous, p) : 0;
+  if (given && fromPrevious <= 0) return previous;  // p is in it
+  const int grid = startTriangle(p);
+  return given && previous != grid && fromPrevious < outside(grid, p) ? previous : grid;
+}
+
 int PointLocator::walk(int t, const Vec2& p, int cap, bool& atBoundary) const {
   int came = -1;
   atBoundary = false;

@@ -307,7 +307,9 @@ class Improver {
     }
     Metric2 mp;
     try {
-      mp = field_.at(p);
+      // Located from the previous probe's triangle (the probes of a star are close;
+      // MetricField::evaluate falls back on its own start when that one is far).
+      field_.evaluate(std::span<const Vec2>(&p, 1), std::span<Metric2>(&mp, 1), std::span<int>(&fieldHint_, 1));
     } catch (const InputError&) {
       return std::nullopt;  // not a place to move to
     }
@@ -524,6 +526,7 @@ class Improver {
   Mesh2& mesh_;
   std::vector<Metric2>& metrics_;
   const MetricField& field_;
+  mutable int fieldHint_ = -1;  ///< the last probe's location in field_ (where its walk starts)
   ImproveOptions options_;
   std::vector<double> quality_;                  ///< q of every triangle, current (dead ones: stale)
   std::vector<std::array<int, 3>> neighbours_;   ///< across the side opposite local vertex k; −1: boundary

@@ -362,7 +362,15 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
     metric.evaluate(nodes.positions, ms);
   for (int i = 0; i < nodes.size(); ++i) grid.insert(i, nodes.positions[i]);
 
-  auto metricAt = [&](const Vec2& p) { return constant ? m0 : metric.at(p); };
+  // Located from the previous candidate's triangle (lattice candidates come in neighbouring
+  // runs; MetricField::evaluate falls back on its own start when that one is far).
+  int hint = -1;
+  auto metricAt = [&](const Vec2& p) {
+    if (constant) return m0;
+    Metric2 m;
+    metric.evaluate(std::span<const Vec2>(&p, 1), std::span<Metric2>(&m, 1), std::span<int>(&hint, 1));
+    return m;
+  };
   // A candidate c (metric m, largest size h1 of m) is kept if it is far enough from every
   // node, inside, and far enough from the walls; the cheapest test first (most lattice
   // candidates land on a node placed before).

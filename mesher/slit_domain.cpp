@@ -92,6 +92,9 @@ Hit castRay(const Piece& piece, int l, int i) {
     for (std::size_t j = 0; j < p.size(); ++j) {
       const Vec2 &a = p[j].p, &b = p[(j + 1) % p.size()].p;
       if (a == t || b == t) continue;  // the tip's own segments
+      // Only a segment whose domain side (its left) faces the tip: of the two lips of another
+      // slit, or the two visits of a point of it, the one the cut arrives at.
+      if (orient2d(a, b, t) <= 0) continue;
       const double denom = cross(d, b - a);
       if (std::abs(denom) <= 1e-14 * d.norm() * (b - a).norm()) continue;  // parallel
       const double s = cross(a - t, b - a) / denom, u = cross(a - t, d) / denom;

@@ -14,8 +14,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${FUZZ_SECONDS:-30}
 jobs=${FUZZ_JOBS:-$(nproc)}
+# The same configuration as scripts/test.sh's sanitizer stage, so the libraries built there are reused.
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DABLMG_FUZZ=ON \
-  -DBUILD_TESTING=OFF -DABLMG_BUILD_BENCH=OFF > /dev/null
+  -DABLMG_BUILD_BENCH=OFF -DABLMG_PYTHON=OFF -DABLMG_INSTALL=OFF > /dev/null
 if [ $# -gt 0 ]; then
   names="$*"
 else

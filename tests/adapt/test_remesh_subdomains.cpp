@@ -165,7 +165,8 @@ TEST(RemeshSubdomains, RepeatedRemeshingOfACurvedInterfaceDoesNotDrift) {
   const auto a0 = areaByRef(mesh);
   std::map<int, double> first;
   for (int cycle = 0; cycle < 10; ++cycle) {
-    RemeshResult r = remesh(std::move(mesh), sizes(mesh, 0.05));
+    auto metric = sizes(mesh, 0.05);  // before the move: argument evaluation order is unspecified
+    RemeshResult r = remesh(std::move(mesh), std::move(metric));
     ASSERT_TRUE(r.mesh.validate().ok) << "cycle " << cycle << ": " << r.mesh.validate().firstProblem;
     mesh = std::move(r.mesh);
     const auto a = areaByRef(mesh);

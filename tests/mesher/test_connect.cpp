@@ -20,7 +20,7 @@ using namespace ablmg::mesher;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(ABLMG_TEST_SANITIZED)
 constexpr int kRandomCases = 40;  // the sanitizer build is ~10× slower; the Release run does 200
 #else
 constexpr int kRandomCases = 200;

@@ -140,3 +140,17 @@ TEST(MeshSlitDomain, TipPointingOutOfTheDomainIsRefused) {
       },
       InputError);
 }
+
+TEST(MeshSlitDomain, CutThatMeetsAnotherSlitJoinsItOnTheSideItArrivesAt) {
+  // The cut ahead of the first tip (the origin, going left) meets the free slit x = −0.5 at its
+  // middle point, which the slit's loop visits twice; both orders of the free slit's points.
+  for (const double dir : {1.0, -1.0}) {
+    const Domain d = Domain::rectangle(-1, -1, 1, 1)
+                         .withSlit({{1, 0}, {0, 0}}, 7, 8)
+                         .withSlit({{-0.5, 0.5 * dir}, {-0.5, -0.5 * dir}}, 9, 10);
+    const MeshResult r = meshDomain(d, ConstantMetricField(Metric2::isotropic(0.2)));
+    EXPECT_TRUE(r.mesh.validate().ok) << r.mesh.validate().firstProblem;
+    EXPECT_NEAR(r.mesh.area(), 4.0, 1e-12);
+    EXPECT_EQ(edgesThroughSlit(r.mesh, {-0.5, 0.5 * dir}, {-0.5, -0.5 * dir}, 9, 10), 0) << dir;
+  }
+}
