@@ -65,6 +65,7 @@ void bindAdapt(py::module_& m) {
   d["hmin"] = defaults.metric.hmin;
   d["hmax"] = defaults.metric.hmax;
   d["max_anisotropy"] = defaults.metric.maxAnisotropy;
+  if (defaults.metric.shapeBlend) d["shape_blend"] = *defaults.metric.shapeBlend;
   d["hgrad"] = defaults.hgrad;
   d["method"] = adapt::toString(defaults.hessian);
   m.attr("ADAPT_DEFAULTS") = d;

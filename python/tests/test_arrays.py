@@ -157,7 +157,10 @@ def test_hessian_metric_of_a_quadratic(square_mesh):
     assert 1800 < r.num_vertices < 2300
     h1 = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000, norm="h1", hgrad=1.5,
                               method="double")
-    assert set(ablmg.ADAPT_DEFAULTS) >= {"p", "hgrad", "norm", "method"}
+    assert set(ablmg.ADAPT_DEFAULTS) >= {"p", "hgrad", "norm", "method", "shape_blend"}
+    Md = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000,
+                              shape_blend=ablmg.ADAPT_DEFAULTS["shape_blend"])
+    np.testing.assert_array_equal(Md, M)  # the listed default is the one the call uses
     assert np.isfinite(h1).all()
 
 
