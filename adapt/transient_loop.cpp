@@ -1,18 +1,15 @@
 #include "ablmg/adapt/transient_loop.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/stopwatch.hpp"
 #include "ablmg/fem/error_norms.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
 namespace ablmg::adapt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 /// The time integrator's state on one mesh: u^n and (BDF2) u^(n−1).
 struct State {
@@ -37,16 +34,16 @@ IntervalSolve solveInterval(const Mesh2& mesh, const fem::TransientProblem& prob
                             const State& start, double t0, double dt, int firstStep, int steps, bool hessians,
                             bool errors) {
   IntervalSolve r;
-  const auto clock0 = Clock::now();
+  const Stopwatch clock0;
   double metricSeconds = 0;
   fem::HeatSolver solver(mesh, fem::heatProblem(problem), o.scheme);
   solver.setState(t0, start.u, start.previous.size() ? std::optional<Eigen::VectorXd>(start.previous) : std::nullopt,
                   start.dtPrevious);
   const auto addHessians = [&](const Eigen::VectorXd& u) {
-    const auto c = Clock::now();
+    const Stopwatch c;
     intersectHessians(r.hmax,
                       recoverHessians(mesh, std::span<const double>(u.data(), std::size_t(u.size())), o.adapt.hessian));
-    metricSeconds += since(c);
+    metricSeconds += c.seconds();
   };
   if (hessians) addHessians(start.u);
   for (int j = 1; j <= steps; ++j) {
@@ -59,7 +56,7 @@ IntervalSolve solveInterval(const Mesh2& mesh, const fem::TransientProblem& prob
   }
   r.end = {solver.u(), solver.previous(), solver.dtPrevious()};
   r.metricSeconds = metricSeconds;
-  r.seconds = since(clock0) - metricSeconds;
+  r.seconds = clock0.seconds() - metricSeconds;
   return r;
 }
 
@@ -96,27 +93,27 @@ Mesh2 adaptedMesh(const Mesh2& current, const State& state, const fem::Transient
   for (int pass = 0; pass < passes; ++pass) {
     std::vector<Hessian2> hmax;
     if (o.metric == TransientMetric::Interval) {
-      auto c = Clock::now();
+      Stopwatch c;
       TransferStats ts;
       const State start = stateOn(candidate, current, pass == 0, state, interval, problem, t0, o.transfer, ts);
-      rec.tTransfer += since(c);
+      rec.tTransfer += c.seconds();
       IntervalSolve s = solveInterval(candidate, problem, o, start, t0, dt, 0, steps, true, false);
       rec.tSolve += s.seconds;
       rec.tMetric += s.metricSeconds;
       hmax = std::move(s.hmax);
       ++rec.passes;
     } else {
-      const auto c = Clock::now();
+      const Stopwatch c;
       intersectHessians(
           hmax, recoverHessians(current, std::span<const double>(state.u.data(), state.u.size()), o.adapt.hessian));
-      rec.tMetric += since(c);
+      rec.tMetric += c.seconds();
     }
-    auto c = Clock::now();
+    Stopwatch c;
     std::vector<Metric2> metric = metricFromRecovered(candidate, hmax, o.vertices, o.adapt).metric;
-    rec.tMetric += since(c);
-    c = Clock::now();
+    rec.tMetric += c.seconds();
+    c.restart();
     Mesh2 next = remesh(problem.domain, candidate, std::move(metric), o.adapt.mesh).mesh;
-    rec.tRemesh += since(c);
+    rec.tRemesh += c.seconds();
     requireValidMesh(next, problem.domain, "remeshed");
     ++meshes;
     candidate = std::move(next);
@@ -184,7 +181,7 @@ void intersectHessians(std::vector<Hessian2>& accumulated, std::span<const Hessi
 TransientReport runTransientLoop(const fem::TransientProblem& problem, const TransientOptions& options,
                                  const std::function<void(const TransientFrame&)>& onInterval) {
   validate(options, problem.tStart);
-  const auto clock0 = Clock::now();
+  const Stopwatch clock0;
   TransientReport report;
   report.dt = options.dt > 0 ? options.dt : problem.dt;
   report.tStart = problem.tStart;
@@ -205,10 +202,10 @@ TransientReport runTransientLoop(const fem::TransientProblem& problem, const Tra
     Mesh2 next = options.uniform
                      ? current
                      : adaptedMesh(current, state, problem, options, i, t0, report.dt, steps, rec, report.meshes);
-    const auto c = Clock::now();
+    const Stopwatch c;
     TransferStats ts;
     const State start = stateOn(next, current, options.uniform, state, i, problem, t0, options.transfer, ts);
-    rec.tTransfer += since(c);
+    rec.tTransfer += c.seconds();
     rec.massDefect = ts.maxRelativeMassDefect();
     report.maxMassDefect = std::max(report.maxMassDefect, rec.massDefect);
     current = std::move(next);
@@ -230,7 +227,7 @@ TransientReport runTransientLoop(const fem::TransientProblem& problem, const Tra
   report.spaceTimeL2 = std::sqrt(report.spaceTimeL2);
   report.spaceTimeH1 = std::sqrt(report.spaceTimeH1);
   report.averageVertices /= double(report.steps.size());
-  report.seconds = since(clock0);
+  report.seconds = clock0.seconds();
   return report;
 }
 
