@@ -15,7 +15,7 @@
 // --p selects the Lp norm the metric is optimal for (default inf, FreeFem/BAMG's L∞ metric: the
 // H1-optimal grading at singular points; 2: L2).
 // --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
-// (p = 2: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
+// (p = 2, its default: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
 // meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
 // shape to (|H|/√det|H|)^(1+W) (0 the Lp shape, 1 the H1 shape) keeping the norm's density.
 //
@@ -73,7 +73,7 @@ struct Args {
 
 Args parseArgs(const std::vector<std::string>& args) {
   Args a;
-  bool haveTargets = false, shapeBlendGiven = false;
+  bool haveTargets = false, shapeBlendGiven = false, pGiven = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& key = args[i];
     auto value = [&]() -> const std::string& {
@@ -113,10 +113,14 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.schedule.passesUpTo = parseNumber(value(), "adapt: --passes-up-to");
     } else if (key == "--p") {
       a.options.metric.p = parseNumber(value(), "adapt: --p", Infinity::Allowed);
+      pGiven = true;
     } else if (key == "--norm") {
       a.options.metric.norm = adapt::parseErrorNorm(value());
-      // --norm h1 without --shape-blend: the norm's own shape (the default blend is the L2 norm's)
+      // --norm h1 without --shape-blend: the norm's own shape (the default blend is the L2 norm's);
+      // without --p: p = 2, the H1 seminorm itself (the default p = inf would make it W^{1,inf},
+      // whose grading h ~ r^{4/3} crowds the vertices into a corner singularity)
       if (a.options.metric.norm == adapt::ErrorNorm::H1 && !shapeBlendGiven) a.options.metric.shapeBlend.reset();
+      if (a.options.metric.norm == adapt::ErrorNorm::H1 && !pGiven) a.options.metric.p = 2;
     } else if (key == "--shape-blend") {
       a.options.metric.shapeBlend = parseNumber(value(), "adapt: --shape-blend");
       shapeBlendGiven = true;

@@ -14,7 +14,7 @@
 namespace ablmg::python {
 namespace {
 
-const char* kHessianDoc = R"(hessian_metric(points, triangles, u, target_vertices, *, norm='l2', p=<loop's>,
+const char* kHessianDoc = R"(hessian_metric(points, triangles, u, target_vertices, *, norm='l2', p=None,
                shape_blend=None, hmin=0.0, hmax=inf, max_anisotropy=1e4, hgrad=<loop's>,
                method='lsq') -> (n, 3) float64 [m11, m12, m22]
 
@@ -29,7 +29,8 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
   target_vertices    N: the complexity aimed at is (sqrt(3)/2) N (about N vertices), >= 10
   norm               'l2': optimal for the Lp norm of the error (M_p, Loseille-Alauzet);
                      'h1': for the W^{1,p} seminorm
-  p                  the norm's exponent, >= 1 or inf
+  p                  the norm's exponent, >= 1 or inf; None: the loop's (inf with norm 'l2', 2 with
+                     'h1': W^{1,inf} would crowd the vertices into a corner singularity)
   (every default is AdaptOptions' in adapt/adaptive_loop.hpp, i.e. `ablmg adapt`'s: the call
   with no options gives the metric of its loop; ablmg.ADAPT_DEFAULTS lists them)
   shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.15 with
@@ -72,15 +73,19 @@ void bindAdapt(py::module_& m) {
   m.def(
       "hessian_metric",
       [](py::handle points, py::handle triangles, py::handle u, double targetVertices, const std::string& norm,
-         double p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy, double hgrad,
-         const std::string& method) {
+         std::optional<double> p, std::optional<double> shapeBlend, double hmin, double hmax, double maxAnisotropy,
+         double hgrad, const std::string& method) {
         const Mesh2 mesh = toMesh(points, triangles, py::none(), py::none(), true, "hessian_metric");
         const std::vector<double> values = toValues(u, "u", mesh.numVertices());
         adapt::AdaptOptions o;
         o.targetVertices = {targetVertices};
         o.hessian = adapt::parseHessianMethod(method);
         o.metric.norm = adapt::parseErrorNorm(norm);
-        o.metric.p = p;
+        // None: the loop's (p = inf for the L2 norm; 2 for H1, the seminorm itself)
+        if (p)
+          o.metric.p = *p;
+        else if (o.metric.norm == adapt::ErrorNorm::H1)
+          o.metric.p = 2;
         // None: the loop's (AdaptOptions: its blend for the L2 norm, the norm's own shape for H1)
         if (shapeBlend || o.metric.norm == adapt::ErrorNorm::H1) o.metric.shapeBlend = shapeBlend;
         o.metric.hmin = hmin;
@@ -96,7 +101,7 @@ void bindAdapt(py::module_& m) {
         return ownedArray(std::move(metric));
       },
       kHessianDoc, py::arg("points"), py::arg("triangles"), py::arg("u"), py::arg("target_vertices"), py::kw_only(),
-      py::arg("norm") = adapt::toString(defaults.metric.norm), py::arg("p") = defaults.metric.p,
+      py::arg("norm") = adapt::toString(defaults.metric.norm), py::arg("p") = py::none(),
       py::arg("shape_blend") = py::none(), py::arg("hmin") = defaults.metric.hmin,
       py::arg("hmax") = defaults.metric.hmax, py::arg("max_anisotropy") = defaults.metric.maxAnisotropy,
       py::arg("hgrad") = defaults.hgrad, py::arg("method") = adapt::toString(defaults.hessian));

@@ -158,6 +158,13 @@ def test_hessian_metric_of_a_quadratic(square_mesh):
     h1 = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000, norm="h1", hgrad=1.5,
                               method="double")
     assert set(ablmg.ADAPT_DEFAULTS) >= {"p", "hgrad", "norm", "method", "shape_blend"}
+    # norm 'h1' without p is the H1 seminorm (p = 2), not W^{1,inf}
+    h1p2 = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000, norm="h1", p=2, hgrad=1.5,
+                                method="double")
+    np.testing.assert_array_equal(h1, h1p2)
+    h1inf = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000, norm="h1", p=np.inf,
+                                 hgrad=1.5, method="double")
+    assert not np.array_equal(h1, h1inf)
     Md = ablmg.hessian_metric(square_mesh.points, square_mesh.triangles, u, 2000,
                               shape_blend=ablmg.ADAPT_DEFAULTS["shape_blend"])
     np.testing.assert_array_equal(Md, M)  # the listed default is the one the call uses
