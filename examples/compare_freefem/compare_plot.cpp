@@ -232,7 +232,7 @@ int main(int argc, char** argv) try {
   io::drawMesh(ffpng, ffMeshFinal, {}, "", meshOptions);
   io::drawMesh(abpng, abMeshFinal, {}, "", meshOptions);
   io::PictureOptions page;
-  page.width = 1800;
+  page.width = 1200;  // docs/figures stays under 2 MB per problem with 10^5-vertex meshes
   io::tilePictures(
       png.string(), {l2png, h1png, ffpng, abpng}, 2,
       {"", "", "FreeFem++ adaptmesh, final mesh: " + std::to_string(ffMeshFinal.numVertices()) + " vertices",
