@@ -4,7 +4,7 @@
 # and the remesh/solve time split at ~10^6 triangles on 2 ranks. Writes out/dolfinx/ and the
 # section "DOLFINx in the loop" of docs/benchmarks.md (replaced if present).
 #
-#   bash scripts/bench_dolfinx.sh            (about 25 min on a 2-core machine)
+#   bash scripts/bench_dolfinx.sh            (about 15 min on a 2-core machine)
 #   ABLMG_BUILD=DIR  build directory (default build); SKIP_1M=1 skips the 10^6 run
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
