@@ -295,7 +295,7 @@ fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.jso
                "neumann": {"2": "expr"}, "exact": {"u": "expr", "ux": "expr", "uy": "expr"}}}
 (expressions in x, y; tags as the domain's; "exact" optional: without it the only error figure
 is est=, the L2 interpolation error estimated from the recovered Hessian; examples/configs/adapt_*.json).
---vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 2) at
+--vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 3) at
 each size below N1 (default 10000); --target-vertices: cycle k targets N_k vertices (the last N
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
