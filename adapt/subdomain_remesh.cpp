@@ -347,18 +347,10 @@ void remeshSubdomains(const Mesh2& input, const BackgroundMetricField& field, co
     } catch (const InputError& e) { throw InputError(name + ": subdomain " + std::to_string(r.ref) + ": " + e.what()); }
     parts.push_back(mesher::meshDomain(d, field, options));
     refs.push_back(r.ref);
-    const auto& s = parts.back().stats;
-    if (parts.size() == 1) {
-      out.stats = s;
-    } else {  // counts add up; times too
-      out.stats.connect.repairedTriangles += s.connect.repairedTriangles;
-      out.stats.connect.consistentTriangles += s.connect.consistentTriangles;
-      out.stats.placement.finalNodes += s.placement.finalNodes;
-      out.stats.improve.swaps += s.improve.swaps;
-      out.stats.improve.moves += s.improve.moves;
-      out.stats.improve.collapses += s.improve.collapses;
-      out.stats.secondsValidate += s.secondsValidate;
-    }
+    if (parts.size() == 1)
+      out.stats = parts.back().stats;
+    else
+      mesher::addPartStats(out.stats, parts.back().stats);
   }
   glue(parts, refs, curves, out);
   mapFeatures(mesh, out.mesh, name);

@@ -2,6 +2,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
+#include "ablmg/fem/cholmod_threads.hpp"
 #include "ablmg/fem/p1_matrices.hpp"
 #include "ablmg/fem/quadrature.hpp"
 
@@ -84,6 +85,7 @@ void HeatSolver::factorise(double c) {
   f->llt.cholmod().nmethods = 1;
   f->llt.cholmod().method[0].ordering = CHOLMOD_AMD;
   if (openblas_set_num_threads) openblas_set_num_threads(2);
+  const CholmodScope serial;
   f->llt.compute(Aff);
   ABLMG_REQUIRE(f->llt.info() == Eigen::Success, "heat solver: CHOLMOD could not factorise the "
                                                      << nf << "×" << nf << " matrix (not positive definite)");
@@ -130,7 +132,10 @@ void HeatSolver::step(double dt) {
   Eigen::VectorXd b(Eigen::Index(vertexOfDof_.size()));
   for (std::size_t d = 0; d < vertexOfDof_.size(); ++d)
     b[Eigen::Index(d)] = rhs[vertexOfDof_[d]] - lift[Eigen::Index(d)];
-  const Eigen::VectorXd x = factor_->llt.solve(b);
+  const Eigen::VectorXd x = [&] {
+    const CholmodScope serial;
+    return Eigen::VectorXd(factor_->llt.solve(b));
+  }();
   ABLMG_REQUIRE(x.allFinite(), "heat solver: the solve at t = " << t1 << " gave non-finite values");
   Eigen::VectorXd next = g;
   for (std::size_t d = 0; d < vertexOfDof_.size(); ++d) next[vertexOfDof_[d]] = x[Eigen::Index(d)];

@@ -2,6 +2,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
+#include "ablmg/fem/cholmod_threads.hpp"
 #include "ablmg/fem/ordering.hpp"
 
 #include <Eigen/CholmodSupport>
@@ -35,6 +36,7 @@ using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen:
 void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
   llt.cholmod().print = 0;  // libraries never print: CHOLMOD's warnings become our InputError
   fixBlasThreads();
+  const CholmodScope serial;
   llt.compute(M);
   ABLMG_REQUIRE(llt.info() == Eigen::Success, "solve: CHOLMOD could not factorise the "
                                                   << M.rows() << "×" << M.rows()
@@ -68,9 +70,11 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
     llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;  // keep ours
     factorise(llt, Ap);
     const Eigen::VectorXd bp = P * system.b;
+    const CholmodScope serial;
     x = P.transpose() * llt.solve(bp);
   } else {
     factorise(llt, system.A);
+    const CholmodScope serial;
     x = llt.solve(system.b);
   }
   ABLMG_REQUIRE(llt.info() == Eigen::Success && x.allFinite(),

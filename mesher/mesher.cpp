@@ -1,5 +1,8 @@
 #include "ablmg/mesher/mesher.hpp"
 
+#include <algorithm>
+#include <utility>
+
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/slit_domain.hpp"
@@ -19,6 +22,70 @@ double expectedArea(const Domain& domain, const Mesh2& mesh) {
 }
 
 }  // namespace
+
+void addPartStats(MeshStats& whole, const MeshStats& part) {
+  auto& p = whole.placement;
+  const auto& q = part.placement;
+  const long nodes = p.finalNodes + q.finalNodes;
+  if (nodes > 0)
+    p.nearestInRange =
+        (p.nearestInRange * double(p.finalNodes) + q.nearestInRange * double(q.finalNodes)) / double(nodes);
+  for (auto [a, b] : {std::pair{&p.predictedNodes, q.predictedNodes},
+                      {&p.initialNodes, q.initialNodes},
+                      {&p.finalNodes, q.finalNodes},
+                      {&p.inserted, q.inserted},
+                      {&p.deleted, q.deleted},
+                      {&p.activeBubbleSteps, q.activeBubbleSteps},
+                      {&p.coincidentDropped, q.coincidentDropped}})
+    *a += b;
+  for (auto [a, b] : {std::pair{&p.defectsFirst, q.defectsFirst}, {&p.defectsLast, q.defectsLast}})
+    if (b >= 0) *a = std::max<long>(*a, 0) + b;
+  p.steps = std::max(p.steps, q.steps);
+  p.defectPasses = std::max(p.defectPasses, q.defectPasses);
+  p.hitStepCap = p.hitStepCap || q.hitStepCap;
+  p.stalled = p.stalled || q.stalled;
+  p.qualityPlateau = p.qualityPlateau || q.qualityPlateau;
+  p.initialResidual = std::max(p.initialResidual, q.initialResidual);
+  p.finalResidual = std::max(p.finalResidual, q.finalResidual);
+  p.secondsInitial += q.secondsInitial;
+  p.secondsDynamics += q.secondsDynamics;
+  p.secondsAdjacency += q.secondsAdjacency;
+  p.secondsPopulation += q.secondsPopulation;
+  p.secondsDefects += q.secondsDefects;
+
+  auto& c = whole.connect;
+  const auto& d = part.connect;
+  for (auto [a, b] : {std::pair{&c.links, d.links},
+                      {&c.longLinksDropped, d.longLinksDropped},
+                      {&c.intersectionTests, d.intersectionTests},
+                      {&c.crossingsFound, d.crossingsFound},
+                      {&c.deletedEdges, d.deletedEdges},
+                      {&c.consistentTriangles, d.consistentTriangles},
+                      {&c.repairedTriangles, d.repairedTriangles},
+                      {&c.failedRecoveries, d.failedRecoveries},
+                      {&c.swaps, d.swaps},
+                      {&c.droppedNodes, d.droppedNodes}})
+    *a += b;
+  c.deletionRounds = std::max(c.deletionRounds, d.deletionRounds);
+  c.swapCapHit = c.swapCapHit || d.swapCapHit;
+  c.localRepair = c.localRepair || d.localRepair;
+  c.secondsLocalMeshes += d.secondsLocalMeshes;
+  c.secondsRepair += d.secondsRepair;
+
+  auto& i = whole.improve;
+  const auto& j = part.improve;
+  for (auto [a, b] : {std::pair{&i.badBefore, j.badBefore},
+                      {&i.badAfter, j.badAfter},
+                      {&i.swaps, j.swaps},
+                      {&i.moves, j.moves},
+                      {&i.collapses, j.collapses}})
+    *a += b;
+  i.passes = std::max(i.passes, j.passes);
+  i.qMinBefore = std::min(i.qMinBefore, j.qMinBefore);
+  i.qMinAfter = std::min(i.qMinAfter, j.qMinAfter);
+  i.seconds += j.seconds;
+  whole.secondsValidate += part.secondsValidate;
+}
 
 MeshOptions meshPreset(MeshPreset preset) {
   MeshOptions m;

@@ -37,6 +37,11 @@ struct MeshStats {
   double secondsValidate = 0;
 };
 
+/// Adds the statistics of one part of a domain meshed in pieces (slit cuts, subdomains) into
+/// the whole's: counts and times add up; step and pass counts, residuals and stop flags are the
+/// worst part's; the nearest-neighbour share is weighted by the parts' node counts.
+void addPartStats(MeshStats& whole, const MeshStats& part);
+
 struct MeshResult {
   Mesh2 mesh;                   ///< valid; boundary edges carry the domain's segment tags
   std::vector<Metric2> metric;  ///< the prescribed metric at each mesh vertex

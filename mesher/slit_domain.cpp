@@ -293,19 +293,10 @@ MeshResult meshSlitDomain(const Domain& domain, const MetricField& metric, const
       else
         m.boundaryEdges.push_back(g);
     }
-    const MeshStats& s = part.stats;
-    if (k == 0) {
-      out.stats = s;
-    } else {
-      out.stats.placement.finalNodes += s.placement.finalNodes;
-      out.stats.placement.predictedNodes += s.placement.predictedNodes;
-      out.stats.connect.repairedTriangles += s.connect.repairedTriangles;
-      out.stats.connect.consistentTriangles += s.connect.consistentTriangles;
-      out.stats.improve.swaps += s.improve.swaps;
-      out.stats.improve.moves += s.improve.moves;
-      out.stats.improve.collapses += s.improve.collapses;
-      out.stats.secondsValidate += s.secondsValidate;
-    }
+    if (k == 0)
+      out.stats = part.stats;
+    else
+      addPartStats(out.stats, part.stats);
   }
   for (const auto& [e, times] : cutEdges)
     ABLMG_REQUIRE(times == 2, "meshDomain: a slit cut edge was meshed on " << times << " side(s), not 2");

@@ -4,7 +4,8 @@
     python3 scripts/dolfinx_tables.py OUT_DIR docs/benchmarks.md
 
 OUT_DIR/serial/<problem>_compare.csv (the DOLFINx loop against `ablmg adapt`, and DOLFINx on
-ablmg adapt's meshes), OUT_DIR/mpi2/<problem>.csv (the same loop on 2 ranks) and, if present,
+ablmg adapt's meshes), OUT_DIR/mpi2/<problem>.csv (the same loop on 2 ranks, compared with OUT_DIR/serial_snapped/
+<problem>.csv when present: both with the metric snapped) and, if present,
 OUT_DIR/mpi2_1m/wavefront.csv (the time split at ~10^6 triangles) become the section
 <!-- bench_dolfinx:begin/end --> (scripts/update_benchmarks.py).
 """
@@ -62,8 +63,10 @@ def main():
                f"over ablmg adapt: {'; '.join(fits)}.", ""]
         mpi = out / "mpi2" / f"{name}.csv"
         if mpi.exists():
-            serial = rows(out / "serial" / f"{name}.csv")
-            md += [f"{title}, 2 MPI ranks against serial (N, error ratios), and the 2-rank time split per cycle "
+            snapped = out / "serial_snapped" / f"{name}.csv"
+            serial = rows(snapped if snapped.exists() else out / "serial" / f"{name}.csv")
+            how = " (both with the metric snapped, `--metric-quantum 0.00390625`)" if snapped.exists() else ""
+            md += [f"{title}, 2 MPI ranks against serial{how} (N, error ratios), and the 2-rank time split per cycle "
                    "(remesh: ablmg.hessian_metric + ablmg.remesh on rank 0 building this cycle's mesh; solve: "
                    "create_mesh + assembly + PETSc solve; errors: the two norms; wall s):", "",
                    "| cycle | N serial | N 2 ranks | L2 2 ranks / serial | H1 | remesh | solve | errors | CG its |",

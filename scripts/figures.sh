@@ -33,8 +33,8 @@ done
   --vtu off --out-dir "$out/flagship" > /dev/null
 for p in lshape peak tanhlayer; do
   for g in off 1.3; do
-    extra=""; [ "$g" = off ] || extra="--hgrad $g"
-    "$bin" adapt --problem "$p" --target-vertices 500,1000,2000,4000,8000 $extra --vtu off \
+    hgrad=$g; [ "$g" = off ] && hgrad=0   # 0: no gradation (the default is 1.3)
+    "$bin" adapt --problem "$p" --target-vertices 500,1000,2000,4000,8000 --hgrad $hgrad --vtu off \
       --out-dir "$out/adapt_${p}_$g" > /dev/null
   done
 done
@@ -79,7 +79,7 @@ print("| cycle | vertices | L2 error | H1 error | q mean / min |\n|---|---|---|-
 for i, c in enumerate(load("flagship/convergence.json")["cycles"]):
     print(f"| {i}{' (uniform)' if i == 0 else ''} | {c['vertices']} | {c['l2_error']:.3g} | {c['h1_error']:.3g} | "
           f"{c['q_mean']:.3f} / {c['q_min']:.3f} |")
-print("\n### Adaptive loop on the library's problems, `ablmg adapt --problem NAME --target-vertices 500,1000,2000,4000,8000 [--hgrad 1.3]`\n")
+print("\n### Adaptive loop on the library's problems, `ablmg adapt --problem NAME --target-vertices 500,1000,2000,4000,8000 --hgrad 1.3|0`\n")
 print("| run | last cycle: vertices, L2, H1, L2 interpolant | rates L2 / H1 / interpolant (last 4) | q mean / min (last) | q min (all cycles) |\n|---|---|---|---|---|")
 for d in ["flagship"] + sorted(x for x in os.listdir(out) if x.startswith("adapt_")):
     j = load(f"{d}/convergence.json"); last = j["cycles"][-1]; r = j["rates"]

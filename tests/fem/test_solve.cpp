@@ -1,8 +1,9 @@
 // Tests of fem/assemble.hpp + fem/solve.hpp: patch test, Neumann data, lifting, errors on
-// singular or non-SPD systems.
+// singular or non-SPD systems; CHOLMOD's OpenMP loops kept to the calling thread.
 #include "ablmg/fem/solve.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/fem/cholmod_threads.hpp"
 #include "ablmg/fem/error_norms.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
 #include "ablmg/fem/test_problems.hpp"
@@ -155,4 +156,21 @@ TEST(Solve, BitwiseSameForAnyThreadCount) {
   const Eigen::VectorXd two = solvePoisson(m, p).u;
   omp_set_num_threads(saved);
   EXPECT_TRUE(one == two);
+}
+
+TEST(Solve, CholmodScopeRunsRegionsSeriallyAndRestoresTheLevel) {
+  const int saved = omp_get_max_active_levels();
+  auto teamSize = [] {
+    int n = 0;
+#pragma omp parallel num_threads(4)  // CHOLMOD's fixed team size
+#pragma omp atomic
+    ++n;
+    return n;
+  };
+  {
+    const CholmodScope serial;
+    EXPECT_EQ(teamSize(), 1);
+  }
+  EXPECT_EQ(omp_get_max_active_levels(), saved);
+  EXPECT_EQ(teamSize(), saved > 0 ? 4 : 1);
 }

@@ -1,5 +1,5 @@
 // Mirrors mesher/mesher.hpp: meshDomain's progress reports (MeshOptions::progress) come in
-// stage order from the calling thread and do not change the mesh.
+// stage order from the calling thread and do not change the mesh; addPartStats sums the parts.
 #include "ablmg/mesher/mesher.hpp"
 
 #include "ablmg/core/metric_field.hpp"
@@ -46,4 +46,35 @@ TEST(MeshDomain, ProgressReportsStagesInOrderAndLeavesTheMeshAlone) {
       EXPECT_GE(p.step, lastStep);
       lastStep = p.step;
     }
+}
+
+TEST(AddPartStats, CountsAndTimesAddUpWorstPartSetsStepsAndFlags) {
+  MeshStats whole, part;
+  whole.placement.finalNodes = 300;
+  whole.placement.predictedNodes = 290;
+  whole.placement.steps = 40;
+  whole.placement.nearestInRange = 0.9;
+  whole.placement.defectsLast = -1;
+  whole.connect.repairedTriangles = 2;
+  whole.improve.qMinAfter = 0.6;
+  whole.secondsValidate = 0.25;
+  part.placement.finalNodes = 100;
+  part.placement.predictedNodes = 110;
+  part.placement.steps = 70;
+  part.placement.nearestInRange = 0.5;
+  part.placement.defectsLast = 4;
+  part.placement.qualityPlateau = true;
+  part.connect.repairedTriangles = 3;
+  part.improve.qMinAfter = 0.4;
+  part.secondsValidate = 0.5;
+  addPartStats(whole, part);
+  EXPECT_EQ(whole.placement.finalNodes, 400);
+  EXPECT_EQ(whole.placement.predictedNodes, 400);
+  EXPECT_EQ(whole.placement.steps, 70);
+  EXPECT_DOUBLE_EQ(whole.placement.nearestInRange, 0.8);  // (0.9·300 + 0.5·100) / 400
+  EXPECT_EQ(whole.placement.defectsLast, 4);              // −1 (none) plus 4
+  EXPECT_TRUE(whole.placement.qualityPlateau);
+  EXPECT_EQ(whole.connect.repairedTriangles, 5);
+  EXPECT_DOUBLE_EQ(whole.improve.qMinAfter, 0.4);
+  EXPECT_DOUBLE_EQ(whole.secondsValidate, 0.75);
 }
