@@ -210,7 +210,7 @@ AdaptProblem adaptProblem(const fem::TestProblem& problem);
 AdaptProblem adaptProblem(const fem::MaterialProblem& problem);
 
 /// A reference solution for a problem without an exact one: the P1 solution of the loop run on
-/// `problem` to `vertices` (geometricSchedule(vertices) with `options`' metric settings), as a
+/// `problem` to `vertices` (geometricSchedule(vertices) with 2 passes per size, `options`' metric settings), as a
 /// fem::ExactSolution (u interpolated linearly on the reference mesh's triangle containing the
 /// point, ∇u that triangle's gradient; thread-safe). The loop's errors against it measure the
 /// distance to that fine solution: meaningful while the loop's meshes are much coarser (≤ a
