@@ -104,7 +104,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
     metrics.assign(std::size_t(mesh.numVertices()), Metric2::isotropic(hsiz));
   else if (!solOk || long(metrics.size()) != mesh.numVertices())
     metrics = io::readSol(sol, mesh.numVertices(), field);
-  if (!valid) mesh.requireValid(in);
+  if (!valid) mesh.requireValid(in, std::nullopt, 1e-9, 1);  // the file's own (1-based) ids in errors
   if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
     for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};
