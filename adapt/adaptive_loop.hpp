@@ -32,6 +32,7 @@
 #include "ablmg/adapt/metric_from_hessian.hpp"
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/material_problems.hpp"
 #include "ablmg/fem/solve.hpp"
 #include "ablmg/fem/test_problems.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -176,14 +177,40 @@ struct CycleData {
 /// are NaN, errorsDecrease is false and stopL2/stopH1 are rejected; meshes, metrics and u_h
 /// are produced as usual. Data must be functions or constants (not per-vertex values: the mesh
 /// changes every cycle).
+/// Several materials: `regions`, when it has triangles, is a coarse valid mesh of `domain` whose
+/// triangleRefs are the subdomains and whose interfaceEdges are the interfaces between them
+/// (pde.kappaBySubdomain / fBySubdomain keyed by those refs). mesh_0 is then remeshed from it
+/// with the uniform metric (remesh(domain, regions, ...): subdomain by subdomain), and every
+/// later mesh keeps the subdomains, their refs and the interfaces (as chains of edges);
+/// the Hessians are recovered per subdomain (hessian_recovery.hpp).
 struct AdaptProblem {
   Domain domain;
   fem::PoissonProblem pde;
   std::optional<fem::ExactSolution> exact;
+  Mesh2 regions;
 };
 
 /// A library problem as an AdaptProblem: κ = 1, u as Dirichlet data on the whole boundary, exact u.
 AdaptProblem adaptProblem(const fem::TestProblem& problem);
+/// A material problem (fem/material_problems.hpp) as an AdaptProblem: no exact solution.
+AdaptProblem adaptProblem(const fem::MaterialProblem& problem);
+
+/// A reference solution for a problem without an exact one: the P1 solution of the loop run on
+/// `problem` to `vertices` (geometricSchedule(vertices) with `options`' metric settings), as a
+/// fem::ExactSolution (u interpolated linearly on the reference mesh's triangle containing the
+/// point, ∇u that triangle's gradient; thread-safe). The loop's errors against it measure the
+/// distance to that fine solution: meaningful while the loop's meshes are much coarser (≤ a
+/// quarter of its vertices). The mesh and values are kept alive by the returned functions.
+struct ReferenceSolution {
+  fem::ExactSolution exact;
+  long vertices = 0;  ///< of the reference mesh
+};
+ReferenceSolution referenceSolution(const AdaptProblem& problem, double vertices, const AdaptOptions& options);
+
+/// Σ over `input`'s interface edges of the length not covered by `output`'s interface edges
+/// on the same line (0 to round-off when every input interface edge lies on a chain of
+/// output interface edges: the interfaces are resolved). Brute force, O(input × output).
+double uncoveredInterfaceLength(const Mesh2& input, const Mesh2& output);
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle = {});
@@ -193,6 +220,9 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 
 /// mesh_0: meshDomain with the uniform isotropic metric of N vertices.
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options = {});
+/// mesh_0 of `problem`: uniformMesh(domain), or with regions, the regions remeshed to that metric.
+mesher::MeshResult uniformMesh(const AdaptProblem& problem, double targetVertices,
+                               const mesher::MeshOptions& options = {});
 
 /// The metric for the next mesh and how it was made.
 struct AdaptedMetric {

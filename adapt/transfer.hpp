@@ -12,23 +12,31 @@
 ///   ∫ u_new φ_i = ∫ u_old φ_i   for every new hat function φ_i,
 /// the right-hand side integrated exactly on the supermesh (every non-empty intersection of
 /// an old and a new triangle). Each intersection is a convex polygon (≤ 7 sides), found by
-/// clipping the new triangle against the old one's three edges (Sutherland–Hodgman; which
-/// side of an edge a point is on is decided by core::orient2d, exact), and u_old φ_i (degree
-/// 2) is integrated exactly from the polygon's moments ∫1, ∫x, ∫x xᵀ (Green's theorem on its
-/// edges, the sums of a fan triangulation; coordinates relative to a vertex of the new
-/// triangle), u_old and φ_i being affine on the piece. The old triangles meeting a
-/// new triangle T are found by an advancing front (P. E. Farrell, J. R. Maddison, "Conservative
-/// interpolation between volume meshes by local Galerkin projection", CMAME 200 (2011)): start
-/// at the old triangle containing T's centroid (the locator), then visit the old neighbours
-/// of every old triangle whose intersection with T is non-empty. Cost linear in the mesh
-/// sizes (a few old triangles per new one).
+/// clipping the old triangle against the new one's three edge lines (Sutherland–Hodgman).
+/// Which side of a line a point is on is decided by core::orient2d (a floating-point filter,
+/// exact arithmetic only when the filter cannot decide); the sides of an old vertex against
+/// the new triangle's lines are computed once and shared by the old triangles around it, so an
+/// old triangle with its corners all outside one line is rejected, and one with its corners
+/// inside a line is not clipped by it, without a test. On each piece u_old is affine, and
+/// ∫ u_old, ∫ u_old x, ∫ u_old y follow exactly from the polygon's moments ∫1, ∫x, ∫x xᵀ
+/// (Green's theorem on its edges; coordinates relative to a vertex of the new triangle); φ_i
+/// being affine on the whole new triangle, ∫ u_old φ_i follows from their sums over its
+/// pieces. The old triangles meeting a new triangle T are found by an advancing front
+/// (P. E. Farrell, J. R. Maddison, "Conservative interpolation between volume meshes by local
+/// Galerkin projection", CMAME 200 (2011)): start at the old triangle containing T's centroid
+/// (a walk from the previous new triangle's start, the locator at the start of each block of
+/// 256 new triangles or when the walk fails), then visit the old neighbours across every old
+/// edge a piece runs along. Cost linear in the mesh sizes (a few old triangles per new one).
 ///
-/// The mass system M x = b (M the new consistent P1 mass matrix) is solved by conjugate
-/// gradients with the Jacobi preconditioner, to ‖r‖ ≤ 1e−15 ‖b‖ (or stagnation). Why not a
-/// Cholesky factorisation: the Jacobi-scaled P1 mass matrix has its spectrum in [1/2, 2] on
-/// any triangle mesh, however anisotropic (A. J. Wathen, "Realistic eigenvalue bounds for the
-/// Galerkin mass matrix", IMA J. Numer. Anal. 7 (1987)), so CG converges by a factor ≈ 1/3 per
-/// iteration: ≈ 35 sparse products per field, cheaper than one factorisation at 10⁵ vertices.
+/// The mass system M x = b (M the new consistent P1 mass matrix, applied triangle by
+/// triangle without being assembled) is solved by conjugate gradients with the Jacobi
+/// preconditioner, to ‖r‖ ≤ 1e−15 ‖b‖ (or stagnation), serially (a parallel region per
+/// vector operation costs more than it saves at these sizes, and much more when another
+/// process holds a core). Why not a Cholesky factorisation: the Jacobi-scaled P1 mass matrix
+/// has its spectrum in [1/2, 2] on any triangle mesh, however anisotropic (A. J. Wathen,
+/// "Realistic eigenvalue bounds for the Galerkin mass matrix", IMA J. Numer. Anal. 7 (1987)),
+/// so CG converges by a factor ≈ 1/3 per iteration: ≈ 25 triangle sweeps per field, cheaper
+/// than one factorisation at 10⁵ vertices.
 /// Properties (where old and new meshes cover the same polygon): Σ b_i = ∫ u_old (the hats
 /// sum to 1), so ∫ u_new = 1ᵀ M x = ∫ u_old up to the solver's residual (≈ 1e−15 relative);
 /// a linear u_old lies in P1(new) and is reproduced.
@@ -38,9 +46,10 @@
 /// changed (Σ m_i δ_i, m_i = ∫ φ_i) is given back to the vertices with room left, in
 /// proportion to m_i × their room: the result lies in [min, max] and keeps ∫ u.
 ///
-/// Deterministic: every new triangle's contributions are computed alone (OpenMP over new
-/// triangles, each locating from the grid, no hint shared between threads) and summed in
-/// triangle order, so the bits do not depend on the thread count.
+/// Deterministic: every new triangle's contributions are computed alone (OpenMP over blocks
+/// of 256 new triangles; a block's first triangle is located from the grid, the next ones
+/// walk from their predecessor's start, so no hint crosses a block) and summed in triangle
+/// order, so the bits do not depend on the thread count.
 #include "ablmg/core/mesh2.hpp"
 
 #include <Eigen/Core>

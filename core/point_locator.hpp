@@ -45,6 +45,9 @@ class PointLocator {
   /// away; the grid's start alone is tens to hundreds of thin triangles from p on an
   /// anisotropic layer (tanh-layer cycle mesh: 212 walk steps per query from it).
   int startNear(const Vec2& p, int previous) const;
+  /// Per triangle t and local edge k (opposite vertex k): the neighbour triangle or −1, as
+  /// Mesh2::triangleNeighbours (the walk's adjacency, for callers that need it too).
+  const std::vector<std::array<int, 3>>& neighbours() const { return neighbours_; }
 
  private:
   int startTriangle(const Vec2& p) const;

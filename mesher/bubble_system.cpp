@@ -597,6 +597,29 @@ std::vector<int> BubbleSystem::remove(const std::vector<char>& kill, bool segmen
   return map;
 }
 
+void MovementRecord::reserve(std::size_t n) {
+  ref_.reserve(n);
+  travel_.reserve(n);
+  sinceClear_.reserve(n);
+  stamps_.reserve(n);
+}
+
+void BubbleSystem::reserveInterior(std::size_t extra) {
+  const std::size_t need = metrics_.size() + extra;
+  if (metrics_.capacity() >= need) return;
+  const std::size_t n = need + need / 16;
+  nodes_.positions.reserve(n);
+  nodes_.kinds.reserve(n);
+  nodes_.loops.reserve(n);
+  nodes_.arc.reserve(n);
+  for (auto* v : {&s_, &sLo_, &sHi_, &chainShift_, &sStart_, &res_, &clear_}) v->reserve(n);
+  for (auto* v : {&chainPrev_, &chainNext_, &hint_}) v->reserve(n);
+  for (auto* v : {&vel_, &force_, &evalPos_}) v->reserve(n);
+  for (auto* v : {&active_, &kicked_, &need_, &next_}) v->reserve(n);
+  metrics_.reserve(n);
+  movement_.reserve(n);
+}
+
 void BubbleSystem::addInterior(const Vec2& x, const Metric2& m) {
   structureChanged();
   nodes_.positions.push_back(x);

@@ -239,6 +239,7 @@ void apply(const Pass& pass, BubbleSystem& sys, const MetricField& metric, Popul
     std::fill(am.begin(), am.end(), pass.added.front().second);
   else
     metric.evaluate(pts, am);
+  sys.reserveInterior(pts.size());
   for (std::size_t k = 0; k < pts.size(); ++k) sys.addInterior(pts[k], am[k]);
 }
 
