@@ -313,7 +313,7 @@ Material problems (fem/material_problems.hpp: battery) have a kappa and f per su
 exact solution: their errors are against a reference solution, the loop's own at
 --reference-vertices N vertices (default 4x the last target; 0 = none; also for a CONFIG.json
 without "exact"). The final mesh's interfaces are checked to lie on chains of its edges.
---vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 2) at
+--vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 3) at
 each size below N1 (default 10000); --target-vertices: cycle k targets N_k vertices (the last N
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).

@@ -124,12 +124,13 @@ TEST(AdaptiveLoop, ProblemWithoutExactSolution) {
 }
 
 TEST(AdaptiveLoop, GeometricScheduleEndsAtNWithPassesBelowTheThreshold) {
-  ScheduleOptions o;  // N_0 400, growth 2, 2 passes below 10⁴
+  ScheduleOptions o;  // N_0 400, growth 2, 3 passes below 10⁴
   const auto s = geometricSchedule(15000, o);
-  // 15000 / 2^k down to [400, 800): 469, 938, 1875, 3750, 7500 twice each, then 15000 once.
-  const std::vector<double> expect{469, 469, 938, 938, 1875, 1875, 3750, 3750, 7500, 7500, 15000};
+  // 15000 / 2^k down to [400, 800): 469, 938, 1875, 3750, 7500 three times each, then 15000 once.
+  const std::vector<double> expect{469,  469,  469,  938,  938,  938,  1875, 1875,
+                                   1875, 3750, 3750, 3750, 7500, 7500, 7500, 15000};
   EXPECT_EQ(s, expect);
-  EXPECT_EQ(geometricSchedule(300, o), std::vector<double>({300, 300}));  // N ≤ N_0: N only
+  EXPECT_EQ(geometricSchedule(300, o), std::vector<double>({300, 300, 300}));  // N ≤ N_0: N only
   o.passes = 1;
   o.growth = 4;
   EXPECT_EQ(geometricSchedule(6400, o), std::vector<double>({400, 1600, 6400}));
@@ -144,6 +145,7 @@ TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   AdaptOptions o;
   ScheduleOptions s;
   s.startVertices = 300;
+  s.passes = 2;
   o.targetVertices = geometricSchedule(1200, s);  // 300 ×2, 600 ×2, 1200 ×2
   const AdaptReport r = runAdaptiveLoop(fem::makeProblem("wavefront"), o);
   ASSERT_EQ(r.cycles.size(), 6u);
@@ -158,7 +160,7 @@ TEST(AdaptiveLoop, SlitProblemKeepsTheLipsApartAtTheOptimalH1Rate) {
   // tip, no edge from a lip vertex to the other side), and the H1 error falls at ≈ N^(−1/2).
   const fem::TestProblem p = fem::makeProblem("reentrant", {{"omega", 2 * M_PI}});
   AdaptOptions o;
-  o.targetVertices = geometricSchedule(2000, {.startVertices = 250});  // 250 ×2, 500 ×2, 1000 ×2, 2000 ×2
+  o.targetVertices = geometricSchedule(2000, {.startVertices = 250, .passes = 2});  // 250 ×2, 500 ×2, 1000 ×2, 2000 ×2
   int crossing = 0, sharedLip = 0;
   const auto report = runAdaptiveLoop(p, o, [&](const CycleData& c) {
     ASSERT_TRUE(c.mesh.validate().ok) << c.mesh.validate().firstProblem;
