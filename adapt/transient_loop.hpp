@@ -14,8 +14,9 @@
 ///              candidate = mesh_i;
 ///              repeat fixedPointIterations times:
 ///                solve the interval on the candidate from S_i (transferred),
-///                H_max = ∩_j |H(u(t_j))| over the interval's sub-steps j = 0…k (metric
-///                        intersection of the recovered Hessians, vertex-wise on the candidate),
+///                H_max = ∩_j |H(u(t_j))| over the interval's sub-steps j = 0, s, 2s, …, k
+///                        (s = hessianEvery; metric intersection of the recovered Hessians,
+///                        vertex-wise on the candidate),
 ///                candidate = remesh(metricFromRecovered(H_max, N));
 ///              the metric thus covers the feature over the whole interval, not only at t_i;
 ///   metric = Current: the metric of u(t_i) alone (one remesh, no interval solve): the
@@ -61,6 +62,10 @@ struct TransientOptions {
   int remeshEvery = 10;                                    ///< k ≥ 1 steps per interval
   double vertices = 4000;                                  ///< N, vertices of every mesh (≥ 10)
   int fixedPointIterations = 1;                            ///< ≥ 1 (Interval metric)
+  /// The Interval metric intersects the Hessians of the sub-steps j = 0, s, 2s, … and the
+  /// interval's last step (s ≥ 1). Each recovery costs about as much as a time step's solve;
+  /// at s = 2 a feature moves 0.05–0.07 of its width between samples on the library's problems.
+  int hessianEvery = 2;
   TransientMetric metric = TransientMetric::Interval;
   bool uniform = false;  ///< fixed uniform mesh of N vertices
   fem::TimeScheme scheme = fem::TimeScheme::BDF2;
