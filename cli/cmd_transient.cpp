@@ -51,12 +51,12 @@ constexpr const char* kUsage =
     "                       [--hgrad B] [--p P] [--hessian lsq|double] [--seed S] [--frames on|off]\n"
     "                       [--label NAME] [--plot-with LABEL=DIR ...] [--out-dir DIR]\n"
     "  The heat equation u_t - kappa Laplace(u) = f on a mesh that follows the solution: every K steps\n"
-    "  (default 10) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
+    "  (default 20) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
     "  sub-steps, every S-th and the last, default 2; F fixed-point passes, default 1), a remesh to N\n"
     "  vertices (default 4000), the state transferred (conservative L2 projection), and on.\n"
     "  --uniform: one uniform mesh of N vertices.\n"
     "  --metric current: the metric of the current solution only. Problems: movingpeak, front\n"
-    "  (their default dt and final time: 0.002, 0.5 / 0.6). Outputs: see cli/cmd_transient.cpp.\n";
+    "  (their default dt and final time: 0.001, 0.5 / 0.6). Outputs: see cli/cmd_transient.cpp.\n";
 
 void parseOption(Args& a, const std::string& key, const std::function<const std::string&()>& value) {
   auto& o = a.options;
