@@ -131,6 +131,7 @@ PY
 done
 bench=$build/bench/bench_transfer
 if [[ -x $bench ]]; then  # the transfer alone, 10^5-vertex meshes (bench/bench_transfer.cpp)
+  cut -d' ' -f1 /proc/loadavg > "$out/loadavg"
   for threads in 1 2; do
     OMP_NUM_THREADS=$threads OMP_WAIT_POLICY=passive "$bench" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
       --benchmark_format=json > "$out/bench_transfer_$threads.json" 2> /dev/null
@@ -142,7 +143,8 @@ print("### Transfer of 10⁵-vertex fields")
 print()
 print("bench/bench_transfer.cpp: two unrelated perturbed structured meshes of the unit square")
 print("(1.0·10⁵ → 1.1·10⁵ vertices); medians of 5 runs. Wall time is what a caller waits for; on a")
-print("shared machine it is inflated by the other processes, so the main thread's CPU time is given too.")
+print("shared machine it is inflated by the other processes, so the main thread's CPU time is given too")
+print(f"(load average {open(f'{out}/loadavg').read().strip()} on {__import__('os').cpu_count()} cores when the benchmark started).")
 print()
 print("| transfer | fields | threads | wall ms | CPU ms (main thread) | pieces | CG iterations | mass defect |")
 print("|---|---|---|---|---|---|---|---|")
