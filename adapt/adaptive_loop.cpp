@@ -53,8 +53,20 @@ mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, cons
   return mesher::meshDomain(domain, ConstantMetricField(Metric2::isotropic(h)), options);
 }
 
+mesher::MeshResult uniformMesh(const AdaptProblem& problem, double targetVertices, const mesher::MeshOptions& options) {
+  if (problem.regions.numTriangles() == 0) return uniformMesh(problem.domain, targetVertices, options);
+  ABLMG_REQUIRE(targetVertices > 0, "uniformMesh: targetVertices must be > 0 (got " << targetVertices << ")");
+  const double h = std::sqrt(problem.domain.area() / complexityForVertices(targetVertices));
+  return remesh(problem.domain, problem.regions,
+                std::vector<Metric2>(problem.regions.vertices.size(), Metric2::isotropic(h)), options);
+}
+
 AdaptProblem adaptProblem(const fem::TestProblem& problem) {
-  return {problem.domain, problem.poisson(), problem.exact()};
+  return {problem.domain, problem.poisson(), problem.exact(), {}};
+}
+
+AdaptProblem adaptProblem(const fem::MaterialProblem& problem) {
+  return {problem.domain, problem.pde, std::nullopt, problem.regions};
 }
 
 AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions& options,
@@ -71,6 +83,8 @@ void requireMeshIndependent(const AdaptProblem& p) {
   };
   check(p.pde.kappa, "kappa");
   check(p.pde.f, "f");
+  for (const auto& [ref, d] : p.pde.kappaBySubdomain) check(d, "the kappa of subdomain " + std::to_string(ref));
+  for (const auto& [ref, d] : p.pde.fBySubdomain) check(d, "the f of subdomain " + std::to_string(ref));
   check(p.pde.dirichletDefault, "the default Dirichlet data");
   for (const auto& [tag, d] : p.pde.dirichlet) check(d, "the Dirichlet data of tag " + std::to_string(tag));
   for (const auto& [tag, d] : p.pde.neumann) check(d, "the Neumann data of tag " + std::to_string(tag));
@@ -155,7 +169,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
 
   AdaptReport report;
   Stopwatch watch;
-  mesher::MeshResult current = uniformMesh(problem.domain, target(0), cycleMeshOptions(options, 0, cycles));
+  mesher::MeshResult current = uniformMesh(problem, target(0), cycleMeshOptions(options, 0, cycles));
   double tMesh = watch.seconds();
   for (int k = 0; k < cycles; ++k) {
     CycleReport row;

@@ -32,6 +32,7 @@
 #include "ablmg/adapt/metric_from_hessian.hpp"
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/fem/error_norms.hpp"
+#include "ablmg/fem/material_problems.hpp"
 #include "ablmg/fem/solve.hpp"
 #include "ablmg/fem/test_problems.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -51,11 +52,16 @@ namespace ablmg::adapt {
 /// adaptmesh loop at the same N): with one pass per size the wave front of α = 1000 had 33× and
 /// the layer's H1 error 5.8× FreeFem's at 5·10³ vertices, with two passes 0.16× and 2.0×; at
 /// 2·10⁴ the front's H1 ratio goes 0.49 → 0.39. The passes below 10⁴ add about a quarter of
-/// the vertex-cycles of a run to 2·10⁴ (Σ N_k: 4·10⁴ → 5·10⁴).
+/// the vertex-cycles of a run to 2·10⁴ (Σ N_k: 4·10⁴ → 5·10⁴). A third pass below 10⁴ (the
+/// default, with the metric below; run.sh --maxnv 4e4, worst ratios over the cycles ≥ 5·10³
+/// vertices, L2 / H1, shape blend 0.05, hgrad 1.3, 2 → 3 passes) takes the layer's H1 from 0.56 to 0.47 and the 7π/4 corner from
+/// 0.94/1.00 to 0.87/0.97, other problems within ±0.04 except the steep front's L2 (1.33 → 1.46,
+/// the mesh-to-mesh scatter of that problem is about ±0.1); it adds Σ N_k of about 1.5·10⁴ to a
+/// run (a run to 3·10⁴ vertices: 7.4·10⁴ → 8.9·10⁴).
 struct ScheduleOptions {
   double startVertices = 400;  ///< N_0 (≥ 10): the first size is in [N_0, growth · N_0), or N if N ≤ N_0
   double growth = 2;           ///< N_{k+1} / N_k (> 1); the last size is N exactly
-  int passes = 2;              ///< adaptation passes per size (≥ 1) below passesUpTo
+  int passes = 3;              ///< adaptation passes per size (≥ 1) below passesUpTo
   double passesUpTo = 1e4;     ///< sizes ≥ this get one pass
 };
 
@@ -82,28 +88,37 @@ struct AdaptOptions {
   /// p = ∞ costs little L2 and gains H1 (the W^{1,2}-optimal density, metric_from_hessian.hpp, is
   /// det|H|^(1/2) too).
   ///
-  /// shapeBlend 0.15 (metric_from_hessian.hpp: the shape (|H|/√det|H|)^1.15, a little more
+  /// shapeBlend 0.05 (metric_from_hessian.hpp: the shape (|H|/√det|H|)^1.05, a little more
   /// anisotropic than the Lp one, towards the H1-optimal |H|²/det|H|; the density stays
-  /// √det|H|). With the short-axis lattice and the gradation below, measured with
+  /// √det|H|). The blend trades L2 for H1 wherever the metric is anisotropic. Measured with
   /// examples/compare_freefem/run.sh --maxnv 4e4 (N ≈ 2–4·10⁴), worst ratios to FreeFem++ over
-  /// the cycles ≥ 5·10³ vertices, L2 / H1, shape blend 0 → 0.15: tanh layer 0.11/0.74 →
-  /// 0.03/0.52, line singularity 0.13/0.92 → see docs/benchmarks.md; at 10⁴ vertices on every problem:
-  /// H1 of the wave front 0.84 → 0.81, line singularity 0.93 → 0.85, multiple 0.87 → 0.81, tanh
-  /// layer 1.37 → 0.43 (the first pass of a size), corners within ±0.01; L2 rises (wave front
-  /// 0.70 → 0.76, multiple 0.58 → 0.77) but stays below 0.8 there. With norm H1 set, reset it for the
-  /// norm's own shape (`ablmg adapt --norm h1` does).
+  /// the cycles ≥ 5·10³ vertices, L2 / H1, 2 passes per size, hgrad 1.3, shape blend 0.15 → 0.05:
+  /// steep front (α = 1000) 2.06/0.36 → 1.33/0.37, multiple 0.81/0.82 → 0.63/0.85, line
+  /// singularity 0.14/0.82 → 0.09/0.87, tanh layer 0.03/0.52 → 0.06/0.56 (0.47 with the third
+  /// pass above), wave front 0.82/0.82 → 0.77/0.84, peak and corners within ±0.02; the L2 rates
+  /// over the last four sizes rise to −1.10 (steep front; from −0.51), −0.80 (line singularity;
+  /// −0.41). Blend 0 lets the layer's H1 error rise past FreeFem's (0.74 at 0; 0.84 at 0.05 with
+  /// 2·10⁴ vertices, 2 passes). A blend only where H is definite (none on saddles and layers)
+  /// keeps the steep front at 1.06 but puts the layer at 1.21: the layer needs it. With norm H1
+  /// set, reset it for the norm's own shape (`ablmg adapt --norm h1` does).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
-    m.shapeBlend = 0.15;
+    m.shapeBlend = 0.05;
     return m;
   }();
-  /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.3 (MMG's): without it the metric of a
+  /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.25: without it the metric of a
   /// peak or of a layer falls from its refined core to hmax within one or two background
   /// elements, the mesher's transition elements there are poor (q < 0.5) and carry most of the
   /// error, and the peak's L2 error jumped by 2–7× between cycles (p = ∞, 5·10³–2·10⁴ vertices);
-  /// with it the errors fall every cycle. The complexity is restored after grading (uniform rescale).
-  double hgrad = 1.3;
+  /// with it the errors fall every cycle. The complexity is restored after grading (uniform
+  /// rescale). Stronger gradation lowers the FE L2 error of the steep front, whose excess over
+  /// the interpolation error lies in the transition bands beside the front (68 % of L2² at
+  /// distances 3·10⁻³–0.1 from it, 1.4·10⁴ vertices), and costs H1 on the peak (run.sh, shape
+  /// blend 0.05, 3 passes, hgrad 1.3 → 1.25 at 4·10⁴: steep front L2 1.46 → 1.20, peak H1 0.91 →
+  /// 0.91, multiple 0.63/0.84 → 0.60/0.86; at 2·10⁴: hgrad 1.2 peak H1 0.92–0.93, 1.1: the steep
+  /// front's L2 0.74–1.02 but the peak's H1 1.03 and the line singularity's 0.95–1.00).
+  double hgrad = 1.25;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
@@ -176,14 +191,40 @@ struct CycleData {
 /// are NaN, errorsDecrease is false and stopL2/stopH1 are rejected; meshes, metrics and u_h
 /// are produced as usual. Data must be functions or constants (not per-vertex values: the mesh
 /// changes every cycle).
+/// Several materials: `regions`, when it has triangles, is a coarse valid mesh of `domain` whose
+/// triangleRefs are the subdomains and whose interfaceEdges are the interfaces between them
+/// (pde.kappaBySubdomain / fBySubdomain keyed by those refs). mesh_0 is then remeshed from it
+/// with the uniform metric (remesh(domain, regions, ...): subdomain by subdomain), and every
+/// later mesh keeps the subdomains, their refs and the interfaces (as chains of edges);
+/// the Hessians are recovered per subdomain (hessian_recovery.hpp).
 struct AdaptProblem {
   Domain domain;
   fem::PoissonProblem pde;
   std::optional<fem::ExactSolution> exact;
+  Mesh2 regions;
 };
 
 /// A library problem as an AdaptProblem: κ = 1, u as Dirichlet data on the whole boundary, exact u.
 AdaptProblem adaptProblem(const fem::TestProblem& problem);
+/// A material problem (fem/material_problems.hpp) as an AdaptProblem: no exact solution.
+AdaptProblem adaptProblem(const fem::MaterialProblem& problem);
+
+/// A reference solution for a problem without an exact one: the P1 solution of the loop run on
+/// `problem` to `vertices` (geometricSchedule(vertices) with 2 passes per size, `options`' metric settings), as a
+/// fem::ExactSolution (u interpolated linearly on the reference mesh's triangle containing the
+/// point, ∇u that triangle's gradient; thread-safe). The loop's errors against it measure the
+/// distance to that fine solution: meaningful while the loop's meshes are much coarser (≤ a
+/// quarter of its vertices). The mesh and values are kept alive by the returned functions.
+struct ReferenceSolution {
+  fem::ExactSolution exact;
+  long vertices = 0;  ///< of the reference mesh
+};
+ReferenceSolution referenceSolution(const AdaptProblem& problem, double vertices, const AdaptOptions& options);
+
+/// Σ over `input`'s interface edges of the length not covered by `output`'s interface edges
+/// on the same line (0 to round-off when every input interface edge lies on a chain of
+/// output interface edges: the interfaces are resolved). Brute force, O(input × output).
+double uncoveredInterfaceLength(const Mesh2& input, const Mesh2& output);
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle = {});
@@ -193,6 +234,9 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 
 /// mesh_0: meshDomain with the uniform isotropic metric of N vertices.
 mesher::MeshResult uniformMesh(const Domain& domain, double targetVertices, const mesher::MeshOptions& options = {});
+/// mesh_0 of `problem`: uniformMesh(domain), or with regions, the regions remeshed to that metric.
+mesher::MeshResult uniformMesh(const AdaptProblem& problem, double targetVertices,
+                               const mesher::MeshOptions& options = {});
 
 /// The metric for the next mesh and how it was made.
 struct AdaptedMetric {

@@ -6,6 +6,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 
 namespace ablmg::adapt {
@@ -17,6 +18,26 @@ constexpr int kMinParallelVertices = 2048;
 }  // namespace
 
 namespace detail {
+void forEachVertex(int n, const std::function<void(int, std::vector<int>&, std::vector<int>&)>& fit) {
+  int failed = 0;
+#pragma omp parallel if (n >= kMinParallelVertices) reduction(+ : failed)
+  {
+    std::vector<int> patch, mark(std::size_t(n), 0);
+#pragma omp for schedule(dynamic, 256)
+    for (int v = 0; v < n; ++v) {
+      try {
+        fit(v, patch, mark);
+      } catch (...) {  // exceptions must not leave the parallel region
+        ++failed;
+      }
+    }
+  }
+  if (failed) {  // again, serially: throws the first error, as a serial loop would
+    std::vector<int> patch, mark(std::size_t(n), 0);
+    for (int v = 0; v < n; ++v) fit(v, patch, mark);
+  }
+}
+
 namespace {
 /// The patch fit in the patch's principal frame, each axis scaled by the patch's extent along
 /// it: (s, t) = T (x − x_v), T = diag(1/e₁, 1/e₂) Qᵀ with Q the eigenvectors of Σ d dᵀ. The
@@ -168,15 +189,11 @@ std::vector<Vec2> recoverGradients(const Mesh2& mesh, std::span<const double> u)
   const auto g = detail::vertexGraph(mesh);
   const int n = mesh.numVertices();
   std::vector<Vec2> out(n);
-#pragma omp parallel if (n >= kMinParallelVertices)
-  {
-    std::vector<int> patch, mark(n, 0);
-#pragma omp for schedule(dynamic, 256)
-    for (int v = 0; v < n; ++v) {
-      const auto a = detail::patchQuadraticFit(mesh, g, u, v, patch, mark);
-      out[v] = Vec2(a[1], a[2]);
-    }
-  }
+  const auto fit = [&](int v, std::vector<int>& patch, std::vector<int>& mark) {
+    const auto a = detail::patchQuadraticFit(mesh, g, u, v, patch, mark);
+    out[v] = Vec2(a[1], a[2]);
+  };
+  detail::forEachVertex(n, fit);
   return out;
 }
 
@@ -185,24 +202,27 @@ std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) 
   const auto g = detail::vertexGraph(mesh);
   const int n = mesh.numVertices();
   std::vector<Hessian2> out(n);
-#pragma omp parallel if (n >= kMinParallelVertices)
-  {
-    std::vector<int> patch, mark(n, 0);
-#pragma omp for schedule(dynamic, 256)
-    for (int v = 0; v < n; ++v) {
-      const auto a = detail::patchQuadraticFit(mesh, g, u, v, patch, mark);
-      out[v] << 2 * a[3], a[4], a[4], 2 * a[5];
-    }
-  }
+  const auto fit = [&](int v, std::vector<int>& patch, std::vector<int>& mark) {
+    const auto a = detail::patchQuadraticFit(mesh, g, u, v, patch, mark);
+    out[v] << 2 * a[3], a[4], a[4], 2 * a[5];
+  };
+  detail::forEachVertex(n, fit);
   return out;
 }
 }  // namespace
 
 std::vector<Hessian2> recoverHessiansDouble(const Mesh2& mesh, std::span<const double> u);  // hessian_double_l2.cpp
 
+namespace detail {
+std::vector<Hessian2> recoverHessiansOneDomain(const Mesh2& mesh, std::span<const double> u, HessianMethod method) {
+  return method == HessianMethod::LeastSquares ? lsqHessians(mesh, u) : recoverHessiansDouble(mesh, u);
+}
+}  // namespace detail
+
 std::vector<Hessian2> recoverHessians(const Mesh2& mesh, std::span<const double> u, HessianMethod method) {
   detail::checkField(mesh, u, "recoverHessians");
-  return method == HessianMethod::LeastSquares ? lsqHessians(mesh, u) : recoverHessiansDouble(mesh, u);
+  if (detail::hasSeveralSubdomains(mesh)) return detail::recoverPerSubdomain(mesh, u, method);
+  return detail::recoverHessiansOneDomain(mesh, u, method);
 }
 
 }  // namespace ablmg::adapt

@@ -25,10 +25,19 @@
 ///    needs exactness for linear fields, which the L2 projection has on any patch, boundary
 ///    vertices included. It is smoother than LeastSquares (one more averaging) on noisy data.
 ///
+/// Subdomains: on a mesh with several triangle refs (Mesh2::triangleRefs) each subdomain is
+/// recovered on its own (its patches never cross an interface, where a P1 solution with a
+/// discontinuous κ has a kink), and a vertex shared by several subdomains gets the
+/// intersection of their |H| (as metrics: the larger curvature along every direction).
+/// Exactness for a quadratic then holds inside each subdomain, and |H| at the interfaces.
+/// A subdomain too thin to determine a quadratic on its own (e.g. one row of triangles, all
+/// its vertices on its two sides) takes the whole mesh's recovery at its vertices.
+///
 /// Deterministic; parallel over vertices (OpenMP), bitwise identical for any thread count.
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/core/vec2.hpp"
 #include <Eigen/Core>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -65,6 +74,18 @@ VertexGraph vertexGraph(const Mesh2& mesh);
 Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGraph& g, std::span<const double> u, int v,
                                               std::vector<int>& patch, std::vector<int>& mark);
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where);
+/// fit(v, patch, mark) for v in [0, n), in parallel above a size (per-thread scratch `patch`,
+/// `mark` of n zeros); an exception of any call is rethrown (the first in vertex order).
+void forEachVertex(int n, const std::function<void(int, std::vector<int>&, std::vector<int>&)>& fit);
+/// recoverHessians without the subdomain split.
+std::vector<Hessian2> recoverHessiansOneDomain(const Mesh2& mesh, std::span<const double> u, HessianMethod method);
+/// True when the mesh has one triangle ref per triangle and at least two distinct ones.
+bool hasSeveralSubdomains(const Mesh2& mesh);
+/// recoverHessians per subdomain (see above).
+std::vector<Hessian2> recoverPerSubdomain(const Mesh2& mesh, std::span<const double> u, HessianMethod method);
+/// Intersection of |a| and |b| as SPD forms: vᵀ|C|v ≥ max(vᵀ|a|v, vᵀ|b|v) along the common
+/// axes, equality there; |a| when b = 0 (and |b| when a = 0).
+Hessian2 combineSubdomainHessians(const Hessian2& a, const Hessian2& b);
 }  // namespace detail
 
 }  // namespace ablmg::adapt

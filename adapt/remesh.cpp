@@ -54,6 +54,14 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
   for (std::size_t v = 0; v < metric.size(); ++v)
     ABLMG_REQUIRE(metric[v].isSpd(), name << ": metric[" << v << "] (" << metric[v].m11() << ", " << metric[v].m12()
                                           << ", " << metric[v].m22() << ") is not positive definite");
+  if (mesh.numTriangles() == 0 && !mesh.boundaryEdges.empty()) {  // a boundary discretization: its first mesh
+    BoundaryTriangulation b = triangulateBoundary(mesh, name, options.interiorLoops);
+    std::vector<Metric2> kept;
+    kept.reserve(b.inputVertex.size());
+    for (int v : b.inputVertex) kept.push_back(metric[std::size_t(v)]);
+    mesh = std::move(b.mesh);
+    metric = std::move(kept);
+  }
   RemeshResult r;
   const long inputVertices = long(metric.size());
   const auto report = [&](const char* stage) {

@@ -23,6 +23,7 @@
 ///
 /// Errors are exceptions (ablmg::InputError for bad input, ablmg::Error if the mesher fails);
 /// nothing is printed or written. Same input and options (seed) ⇒ bit-identical output.
+#include "ablmg/adapt/boundary_mesh.hpp"
 #include "ablmg/adapt/gradation.hpp"
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/core/metric2.hpp"
@@ -63,6 +64,9 @@ struct RemeshOptions {
   /// metrics differing by round-off (a distributed solver's) give the same mesh; 0: used as
   /// given (default; the meshes of `ablmg remesh`).
   double metricQuantum = 0;
+  /// A mesh with edges and no triangles (a boundary discretization, boundary_mesh.hpp): how
+  /// loops inside other loops are read, as holes (default) or as interfaces between subdomains.
+  InteriorLoops interiorLoops = InteriorLoops::Holes;
   /// The mesher's options: the Remesh preset (mesher/mesher.hpp: plateau stop, no final
   /// relaxation). The seed is mesh.placement.seed, the lattice orientation
   /// mesh.placement.lattice.orientation.
@@ -88,6 +92,9 @@ struct RemeshResult {
 };
 
 /// Remeshes the domain covered by `mesh` so that edges have unit length in `metric`.
+/// A mesh with no triangles and closed loops of boundary edges is first triangulated on its
+/// loop vertices (triangulateBoundary, boundary_mesh.hpp; options.interiorLoops), the metric
+/// of each kept vertex carried over: the size is then interpolated along and into the domain.
 ///  mesh    valid (Mesh2::validate; see RemeshOptions::inputCheck); its boundary loops and
 ///          their refs become the domain (domainFromMeshBoundary: one outer loop, holes,
 ///          corners kept, boundary nodes placed anew). Taken by value and kept as the

@@ -37,6 +37,7 @@
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
 #include "ablmg/io/atomic_file.hpp"
+#include "ablmg/fem/material_problems.hpp"
 #include "ablmg/io/medit.hpp"
 #include "ablmg/io/picture.hpp"
 #include "ablmg/io/vtu.hpp"
@@ -69,6 +70,10 @@ struct Args {
   bool uniform = true, vtu = true, medit = false;
   int verbosity = 1;          ///< -v N: 0 = no progress line
   bool printOptions = false;  ///< --print-options: print the options in effect and exit
+  /// --reference-vertices N: errors against the loop's own solution at N vertices (problems
+  /// without an exact solution); < 0: the default (4 × the last target for a material problem,
+  /// none otherwise); 0: none.
+  double referenceVertices = -1;
 };
 
 Args parseArgs(const std::vector<std::string>& args) {
@@ -162,6 +167,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.outDir = value();
     } else if (key == "--print-options") {
       a.printOptions = true;
+    } else if (key == "--reference-vertices") {
+      a.referenceVertices = parseNumber(value(), "adapt: --reference-vertices");
+      ABLMG_REQUIRE(a.referenceVertices == 0 || (a.referenceVertices >= 10 && a.referenceVertices <= 1e9),
+                    "adapt: --reference-vertices must be 0 (none) or in [10, 1e9], got " << a.referenceVertices);
     } else if (!key.empty() && key[0] != '-') {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
@@ -172,7 +181,7 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
-                           "--plateau-gain --uniform --vtu --medit --out-dir --print-options)");
+                           "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -220,6 +229,11 @@ struct Problem {
 };
 
 Problem libraryProblem(const std::string& name, const std::map<std::string, double>& params) {
+  const auto materials = fem::materialProblemNames();
+  if (std::find(materials.begin(), materials.end(), name) != materials.end()) {
+    const fem::MaterialProblem p = fem::makeMaterialProblem(name, params);
+    return {adapt::adaptProblem(p), p.name, {{"pde", p.description}, {"params", p.params}}};
+  }
   const fem::TestProblem p = fem::makeProblem(name, params);
   return {adapt::adaptProblem(p), p.name, {{"u", p.formula}, {"params", p.params}}};
 }
@@ -286,7 +300,7 @@ const char* kAdaptHelp =
                    [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
                    [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
-                   [--print-options]
+                   [--reference-vertices N] [--print-options]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
 fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.json's own:
@@ -295,7 +309,11 @@ fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...) or on CONFIG.jso
                "neumann": {"2": "expr"}, "exact": {"u": "expr", "ux": "expr", "uy": "expr"}}}
 (expressions in x, y; tags as the domain's; "exact" optional: without it the only error figure
 is est=, the L2 interpolation error estimated from the recovered Hessian; examples/configs/adapt_*.json).
---vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 2) at
+Material problems (fem/material_problems.hpp: battery) have a kappa and f per subdomain and no
+exact solution: their errors are against a reference solution, the loop's own at
+--reference-vertices N vertices (default 4x the last target; 0 = none; also for a CONFIG.json
+without "exact"). The final mesh's interfaces are checked to lie on chains of its edges.
+--vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 3) at
 each size below N1 (default 10000); --target-vertices: cycle k targets N_k vertices (the last N
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
@@ -322,7 +340,26 @@ int runAdapt(const std::vector<std::string>& argv) {
     printEffectiveOptions("adapt", "adapt", a.options.mesh, loopOptionsJson(a, int(a.options.targetVertices.size())));
     return 0;
   }
-  const Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
+  Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
+  const double referenceVertices =
+      a.referenceVertices >= 0 ? a.referenceVertices
+      : problem.data.regions.numTriangles() > 0 && !problem.data.exact
+          ? 4 * *std::max_element(a.options.targetVertices.begin(), a.options.targetVertices.end())
+          : 0.0;
+  ABLMG_REQUIRE(referenceVertices == 0 || !problem.data.exact,
+                "adapt: --reference-vertices is for a problem without an exact solution");
+  long referenceMeshVertices = 0;
+  if (referenceVertices > 0) {  // 0. The reference solution: the same loop, to many more vertices.
+    std::cout << "ablmg adapt: reference solution: the loop to " << referenceVertices << " vertices" << std::endl;
+    adapt::AdaptOptions ro = a.options;
+    ProgressLine referenceProgress("reference", a.verbosity);
+    ro.progress = referenceProgress.callback();
+    adapt::ReferenceSolution ref = adapt::referenceSolution(problem.data, referenceVertices, ro);
+    referenceProgress.clear();
+    referenceMeshVertices = ref.vertices;
+    problem.data.exact = std::move(ref.exact);
+    problem.echo["reference_vertices"] = referenceMeshVertices;
+  }
   const bool exact = problem.data.exact.has_value();
   namespace fs = std::filesystem;
   fs::create_directories(a.outDir);
@@ -330,6 +367,9 @@ int runAdapt(const std::vector<std::string>& argv) {
   // 1. Resolved options.
   std::cout << "ablmg adapt: problem " << problem.name << ": " << problem.echo.dump();
   if (!exact) std::cout << "\n  no exact solution: errors are not computed (NaN in the reports)";
+  if (referenceMeshVertices > 0)
+    std::cout << "\n  errors against the reference solution on " << referenceMeshVertices
+              << " vertices (not an exact solution: meaningful while N is well below it)";
   std::cout << "\n  cycles " << (a.options.cycles > 0 ? a.options.cycles : int(a.options.targetVertices.size()))
             << ", target vertices";
   for (double n : a.options.targetVertices) std::cout << " " << n;
@@ -414,6 +454,16 @@ int runAdapt(const std::vector<std::string>& argv) {
   std::printf("Estimated interpolation error (recovered Hessian, est=): rate %.3f over the last %d cycles%s\n",
               report.l2InterpEstimateRate, report.rateWindow, exact ? "; compare L2interp" : " (optimal P1: -1)");
   if (report.stoppedEarly) std::printf("Stopped after cycle %d: error target reached\n", report.cycles.back().cycle);
+  const bool regions = problem.data.regions.numTriangles() > 0;
+  double uncovered = 0, interfaceLength = 0;
+  if (regions) {  // every interface edge of the regions on a chain of the final mesh's interface edges
+    uncovered = adapt::uncoveredInterfaceLength(problem.data.regions, finalMesh);
+    for (const auto& e : problem.data.regions.interfaceEdges)
+      interfaceLength +=
+          (problem.data.regions.vertices[std::size_t(e.b)] - problem.data.regions.vertices[std::size_t(e.a)]).norm();
+    std::printf("Interfaces in the final mesh: %.3g of their length %.4g not on final interface edges (%s)\n",
+                uncovered, interfaceLength, uncovered <= 1e-9 * interfaceLength ? "resolved" : "NOT RESOLVED");
+  }
 
   // 4. Reports: CSV, JSON.
   io::writeFileAtomically((fs::path(a.outDir) / "convergence.csv").string(), [&](std::ostream& os) {
@@ -459,6 +509,7 @@ int runAdapt(const std::vector<std::string>& argv) {
                 {"l2_interp", num(report.l2InterpRate)},
                 {"l2_interp_estimate", num(report.l2InterpEstimateRate)}};
   j["errors_decrease"] = report.errorsDecrease;
+  if (regions) j["interfaces"] = {{"length", interfaceLength}, {"uncovered", uncovered}};
   j["stopped_early"] = report.stoppedEarly;
 
   // 5. Uniform refinement on the same axes, and the pictures.
@@ -474,7 +525,9 @@ int runAdapt(const std::vector<std::string>& argv) {
     }
     curves.back().y.push_back(r.l2InterpEstimate);
   }
-  if (a.uniform && exact && !uniformFits(problem.data.domain)) {
+  if (a.uniform && exact && regions) {
+    std::printf("Uniform: skipped (the problem has subdomains, which a uniform grid does not follow)\n");
+  } else if (a.uniform && exact && !uniformFits(problem.data.domain)) {
     std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel, or slits)\n");
   } else if (a.uniform && exact) {
     io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
@@ -520,7 +573,12 @@ int runAdapt(const std::vector<std::string>& argv) {
   if (plottable)
     io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
                        "ablmg adapt: " + problem.name);
-  io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh);
+  if (regions) {  // the materials in colour, their interfaces in red
+    const std::vector<double> material(finalMesh.triangleRefs.begin(), finalMesh.triangleRefs.end());
+    io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh, material, "material");
+  } else {
+    io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh);
+  }
   std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json" << (plottable ? ", convergence.png" : "")
             << ", final_mesh.png" << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
   return 0;

@@ -38,7 +38,13 @@ const char* kHelp =
     R"(usage: ablmg remesh -in IN.mesh [-sol|-met IN.sol] [-out OUT.mesh] [-hmin H] [-hmax H] [-hgrad G] [-v N]
 
 Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's mmg2d flags).
-  -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain
+  -in IN.mesh      input mesh (medit, 2D); its boundary edges and refs define the domain.
+                   A file with Edges and no Triangles (a boundary discretization, closed
+                   loops) is meshed inside its loops (adapt/boundary_mesh.hpp): the size from
+                   the per-vertex SOL or -hsiz, interpolated along and into the domain
+  --interior-loops holes|subdomains
+                   edges-only input: a loop inside another is a hole (default; one inside a
+                   hole an island) or an interface between two subdomains
   -sol, -met SOL   per-vertex metric (type 1 sizes or type 3 tensors m11 m12 m22);
                    default IN.sol
   -hsiz H          constant size H at every vertex (no .sol read), as MMG
@@ -104,7 +110,8 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
     metrics.assign(std::size_t(mesh.numVertices()), Metric2::isotropic(hsiz));
   else if (!solOk || long(metrics.size()) != mesh.numVertices())
     metrics = io::readSol(sol, mesh.numVertices(), field);
-  if (!valid) mesh.requireValid(in);
+  // Edges only: remesh() triangulates them. Errors name the file's own (1-based) ids.
+  if (!valid && mesh.numTriangles() > 0) mesh.requireValid(in, std::nullopt, 1e-9, 1);
   if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
     for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};
@@ -113,6 +120,7 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
 int runRemesh(const std::vector<std::string>& args) {
   std::string in, sol, out, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0, metricQuantum = 0;
+  adapt::InteriorLoops interiorLoops = adapt::InteriorLoops::Holes;
   int verbose = 1, metField = 0;
   bool printOptions = false;
   long long seed = 0;
@@ -161,7 +169,12 @@ int runRemesh(const std::vector<std::string>& args) {
       reportPath = value();
     else if (a == "--print-options")
       printOptions = true;
-    else if (a == "--metric-quantum") {
+    else if (a == "--interior-loops") {
+      const std::string v = value();
+      ABLMG_REQUIRE(v == "holes" || v == "subdomains",
+                    "remesh: --interior-loops must be holes or subdomains, got '" << v << "'");
+      interiorLoops = v == "holes" ? adapt::InteriorLoops::Holes : adapt::InteriorLoops::Subdomains;
+    } else if (a == "--metric-quantum") {
       metricQuantum = parseNumber(value(), "remesh: " + a);
       ABLMG_REQUIRE(metricQuantum >= 0, "remesh: --metric-quantum must be >= 0 (0 = off), got " << metricQuantum);
     } else if (!a.empty() && a[0] == '-')
@@ -184,6 +197,7 @@ int runRemesh(const std::vector<std::string>& args) {
                 "--report must not be the output mesh or .sol");
 
   adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and docs/method.md
+  options.interiorLoops = interiorLoops;
   options.hmin = hmin;
   options.hmax = hmax;
   options.hgrad = hgrad;  // -1 (any value < 0) is "off" for both
@@ -208,6 +222,7 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"metField", metField},
                 {"hsiz", hsiz},
                 {"metricQuantum", metricQuantum},
+                {"interiorLoops", options.interiorLoops == adapt::InteriorLoops::Holes ? "holes" : "subdomains"},
                 {"options", meshOptionsToJson(options.mesh)},
                 {"report", reportPath}};
     if (printOptions) {

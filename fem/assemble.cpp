@@ -91,15 +91,15 @@ namespace {
 
 /// ∫_T κ of triangle t (area `area`, vertices p): the rule for a function, the vertex mean
 /// for vertex values; κ must be positive (InputError naming the point or vertex otherwise).
-double kappaIntegral(const Mesh2& mesh, const PoissonProblem& problem, const TriangleRule& rule, int t,
-                     const Vec2 (&p)[3], double area) {
+double kappaIntegral(const Mesh2& mesh, const ScalarData& kappa, const TriangleRule& rule, int t, const Vec2 (&p)[3],
+                     double area) {
   const auto& tri = mesh.triangles[t];
-  if (problem.kappa.isFunction()) {
+  if (kappa.isFunction()) {
     double kappaInt = 0;
     for (int q = 0; q < rule.size(); ++q) {
       const auto& l = rule.points[q];
       const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-      const double k = problem.kappa.fn(x.x(), x.y());
+      const double k = kappa.fn(x.x(), x.y());
       ABLMG_REQUIRE(k > 0 && std::isfinite(k), "assemble: kappa = " << k << " at (" << x.x() << ", " << x.y()
                                                                     << ") in triangle " << t
                                                                     << " (kappa must be positive: the system "
@@ -108,17 +108,28 @@ double kappaIntegral(const Mesh2& mesh, const PoissonProblem& problem, const Tri
     }
     return kappaInt * area;
   }
-  if (problem.kappa.isVertexValues()) {
-    const auto& kv = problem.kappa.vertexValues;
+  if (kappa.isVertexValues()) {
+    const auto& kv = kappa.vertexValues;
     for (int v : tri)
       ABLMG_REQUIRE(kv[v] > 0 && std::isfinite(kv[v]),
                     "assemble: kappa = " << kv[v] << " at vertex " << v << " (kappa must be positive)");
     return area * (kv[tri[0]] + kv[tri[1]] + kv[tri[2]]) / 3;
   }
-  ABLMG_REQUIRE(
-      problem.kappa.constant > 0 && std::isfinite(problem.kappa.constant),
-      "assemble: kappa = " << problem.kappa.constant << " (kappa must be positive: the system would not be SPD)");
-  return area * problem.kappa.constant;
+  ABLMG_REQUIRE(kappa.constant > 0 && std::isfinite(kappa.constant),
+                "assemble: kappa = " << kappa.constant << " in triangle " << t
+                                     << " (kappa must be positive: the system would not be SPD)");
+  return area * kappa.constant;
+}
+
+/// The datum of triangle t: `bySubdomain`'s entry for t's ref when that map is given, else `all`.
+const ScalarData& subdomainDatum(const Mesh2& mesh, const std::map<int, ScalarData>& bySubdomain, const ScalarData& all,
+                                 int t, const char* what) {
+  if (bySubdomain.empty()) return all;
+  const int ref = mesh.triangleRefs.empty() ? 0 : mesh.triangleRefs[std::size_t(t)];
+  const auto it = bySubdomain.find(ref);
+  ABLMG_REQUIRE(it != bySubdomain.end(), "assemble: triangle " << t << " has subdomain ref " << ref << ", and " << what
+                                                               << " has no entry for it");
+  return it->second;
 }
 
 /// The local stiffness and load of triangle t.
@@ -127,7 +138,9 @@ void computeElement(const Mesh2& mesh, const PoissonProblem& problem, const Tria
   const Vec2 p[3] = {mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]};
   const double area = 0.5 * cross(p[1] - p[0], p[2] - p[0]);
   ABLMG_REQUIRE(area > 0, "assemble: triangle " << t << " has non-positive area " << area);
-  const double kappaInt = kappaIntegral(mesh, problem, rule, t, p, area);
+  const ScalarData& kappa = subdomainDatum(mesh, problem.kappaBySubdomain, problem.kappa, t, "kappaBySubdomain");
+  const ScalarData& f = subdomainDatum(mesh, problem.fBySubdomain, problem.f, t, "fBySubdomain");
+  const double kappaInt = kappaIntegral(mesh, kappa, rule, t, p, area);
   // ∇λ_k = e_k / (2|T|), e_k = perp of the opposite edge; A_kl = ∫κ ∇λ_k·∇λ_l.
   Vec2 e[3];
   for (int k = 0; k < 3; ++k) {
@@ -140,20 +153,20 @@ void computeElement(const Mesh2& mesh, const PoissonProblem& problem, const Tria
     for (int l = 0; l < 3; ++l) d.a[k][l] = scale * e[k].dot(e[l]);
   // ∫_T f λ_k
   for (double& v : d.load) v = 0;
-  if (problem.f.isFunction()) {
+  if (f.isFunction()) {
     for (int q = 0; q < rule.size(); ++q) {
       const auto& l = rule.points[q];
       const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-      const double fq = rule.weights[q] * problem.f.fn(x.x(), x.y());
+      const double fq = rule.weights[q] * f.fn(x.x(), x.y());
       for (int k = 0; k < 3; ++k) d.load[k] += fq * l[k];
     }
     for (double& v : d.load) v *= area;
-  } else if (problem.f.isVertexValues()) {
-    const auto& fv = problem.f.vertexValues;
+  } else if (f.isVertexValues()) {
+    const auto& fv = f.vertexValues;
     const double s = fv[tri[0]] + fv[tri[1]] + fv[tri[2]];
     for (int k = 0; k < 3; ++k) d.load[k] = area / 12 * (s + fv[tri[k]]);
   } else {
-    for (double& v : d.load) v = problem.f.constant * area / 3;
+    for (double& v : d.load) v = f.constant * area / 3;
   }
 }
 
@@ -285,6 +298,11 @@ LinearSystem assemble(const Mesh2& mesh, const PoissonProblem& problem) {
   ABLMG_REQUIRE(mesh.numTriangles() > 0, "assemble: the mesh has no triangles");
   requireSize(problem.kappa, mesh, "kappa");
   requireSize(problem.f, mesh, "f");
+  ABLMG_REQUIRE(
+      mesh.triangleRefs.empty() || mesh.triangleRefs.size() == mesh.triangles.size(),
+      "assemble: " << mesh.triangleRefs.size() << " triangle refs for " << mesh.triangles.size() << " triangles");
+  for (const auto& [ref, data] : problem.kappaBySubdomain) requireSize(data, mesh, "kappaBySubdomain");
+  for (const auto& [ref, data] : problem.fBySubdomain) requireSize(data, mesh, "fBySubdomain");
   for (const auto& [tag, data] : problem.neumann) requireSize(data, mesh, "Neumann data");
   LinearSystem sys;
   numberDofs(mesh, problem, sys);

@@ -8,7 +8,8 @@
 /// piece of the mesh touches the Dirichlet boundary (both checked, InputError otherwise).
 ///
 ///   A_ij = Σ_T (∫_T κ) ∇φ_i·∇φ_j   (∇φ constant on T; ∫_T κ exact for a constant or
-///                                    per-vertex κ, by the degree-5 rule for a function)
+///                                    per-vertex κ, by the degree-5 rule for a function;
+///                                    κ of T's subdomain with PoissonProblem::kappaBySubdomain)
 ///   b_i  = ∫ f φ_i + ∫_{Γ_N} g_N φ_i − Σ_{j Dirichlet} A_ij g_j
 /// f given as a function is integrated with the degree-5 rule (never interpolated: an
 /// interpolated load spoils the error on steep solutions), g_N with 3-point Gauss on edges.

@@ -45,6 +45,12 @@ struct ScalarData {
 struct PoissonProblem {
   ScalarData kappa = 1.0;  ///< diffusion coefficient κ > 0
   ScalarData f = 0.0;      ///< right-hand side; functions are integrated by a degree-5 rule
+  /// Per subdomain (material) data, keyed by triangle ref (Mesh2::triangleRefs; 0 when the mesh
+  /// has none). When non-empty, triangle t uses kappaBySubdomain.at(ref of t) instead of
+  /// `kappa` (and fBySubdomain likewise instead of `f`), so κ and f may jump across the
+  /// interfaces between subdomains (Mitchell's battery). A ref with no entry is an InputError
+  /// naming it. Vertex values are per vertex of the whole mesh.
+  std::map<int, ScalarData> kappaBySubdomain, fBySubdomain;
   /// Dirichlet data per boundary reference tag (BoundaryEdge::ref).
   std::map<int, ScalarData> dirichlet;
   /// When `hasDirichletDefault`: Dirichlet data for every boundary tag listed neither in

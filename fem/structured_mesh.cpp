@@ -111,4 +111,55 @@ Mesh2 unitSquareMesh(int n, double perturbation, std::uint64_t seed) {
   return structuredMesh(Domain::rectangle(0, 0, 1, 1), n, n, perturbation, seed);
 }
 
+Mesh2 gridRegionMesh(const std::vector<double>& xs, const std::vector<double>& ys,
+                     const std::function<int(double x, double y)>& refOfCell) {
+  for (const auto* v : {&xs, &ys}) {
+    ABLMG_REQUIRE(v->size() >= 2,
+                  "gridRegionMesh: " << (v == &xs ? "xs" : "ys") << " has " << v->size() << " breakpoints (need >= 2)");
+    for (std::size_t k = 0; k < v->size(); ++k)
+      ABLMG_REQUIRE(std::isfinite((*v)[k]) && (k == 0 || (*v)[k] > (*v)[k - 1]),
+                    "gridRegionMesh: " << (v == &xs ? "xs" : "ys") << "[" << k << "] = " << (*v)[k]
+                                       << " (breakpoints must be finite and strictly increasing)");
+  }
+  const int nx = int(xs.size()) - 1, ny = int(ys.size()) - 1;
+  Mesh2 mesh;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) mesh.vertices.emplace_back(xs[std::size_t(i)], ys[std::size_t(j)]);
+  const auto id = [nx](int i, int j) { return j * (nx + 1) + i; };
+  std::vector<int> cellRef(std::size_t(nx) * std::size_t(ny));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int ref = refOfCell(0.5 * (xs[std::size_t(i)] + xs[std::size_t(i) + 1]),
+                                0.5 * (ys[std::size_t(j)] + ys[std::size_t(j) + 1]));
+      cellRef[std::size_t(j) * std::size_t(nx) + std::size_t(i)] = ref;
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        mesh.triangles.push_back({a, b, c});
+        mesh.triangles.push_back({a, c, d});
+      } else {
+        mesh.triangles.push_back({a, b, d});
+        mesh.triangles.push_back({b, c, d});
+      }
+      mesh.triangleRefs.insert(mesh.triangleRefs.end(), 2, ref);
+    }
+  const auto refAt = [&](int i, int j) { return cellRef[std::size_t(j) * std::size_t(nx) + std::size_t(i)]; };
+  const auto interfaceRef = [](int a, int b) { return 10 * std::min(a, b) + std::max(a, b); };
+  for (int i = 0; i < nx; ++i) {
+    mesh.boundaryEdges.push_back({id(i, 0), id(i + 1, 0), 1});
+    mesh.boundaryEdges.push_back({id(i + 1, ny), id(i, ny), 3});
+  }
+  for (int j = 0; j < ny; ++j) {
+    mesh.boundaryEdges.push_back({id(nx, j), id(nx, j + 1), 2});
+    mesh.boundaryEdges.push_back({id(0, j + 1), id(0, j), 4});
+  }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (i + 1 < nx && refAt(i, j) != refAt(i + 1, j))
+        mesh.interfaceEdges.push_back({id(i + 1, j), id(i + 1, j + 1), interfaceRef(refAt(i, j), refAt(i + 1, j))});
+      if (j + 1 < ny && refAt(i, j) != refAt(i, j + 1))
+        mesh.interfaceEdges.push_back({id(i, j + 1), id(i + 1, j + 1), interfaceRef(refAt(i, j), refAt(i, j + 1))});
+    }
+  return mesh;
+}
+
 }  // namespace ablmg::fem

@@ -16,6 +16,8 @@
 #include "ablmg/core/mesh2.hpp"
 
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 namespace ablmg::fem {
 
@@ -23,6 +25,15 @@ namespace ablmg::fem {
 /// a domain point is not a grid node, or the domain has slits.
 Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation = 0.0, std::uint64_t seed = 1);
 
+/// A rectangle cut by the grid lines x = xs[i], y = ys[j] (each strictly increasing, ≥ 2
+/// values; the rectangle is [xs.front(), xs.back()] × [ys.front(), ys.back()]) into cells,
+/// each cell two triangles (alternating diagonals) whose triangleRefs is refOfCell(centre of
+/// the cell). Boundary tags as Domain::rectangle; every edge between two triangles of
+/// different refs a and b is an interface edge of ref 10·min(a, b) + max(a, b). A coarse,
+/// valid mesh of rectilinear subdomains (materials), e.g. the regions of Mitchell's battery.
+/// Throws InputError for breakpoints not increasing or non-finite.
+Mesh2 gridRegionMesh(const std::vector<double>& xs, const std::vector<double>& ys,
+                     const std::function<int(double x, double y)>& refOfCell);
 /// The unit square [0,1]² with n × n cells (tags as Domain::rectangle).
 Mesh2 unitSquareMesh(int n, double perturbation = 0.0, std::uint64_t seed = 1);
 

@@ -87,8 +87,10 @@ void writeSurfaceMesh(const std::string& path, const std::vector<Eigen::Vector3d
                       const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& triangleRefs = {});
 /// Tensor .sol (type 3, m11 m12 m22), one per vertex.
 void writeSol(const std::string& path, std::span<const Metric2> metrics);
-/// writeMesh then writeSol (same files), the two formatted in parallel (two threads). If the
-/// .sol cannot be written the new .mesh is removed again.
+/// writeMesh then writeSol (same files), the two formatted and streamed in parallel (two
+/// threads; the text goes out in blocks, never held whole). The .sol is renamed into place
+/// only after the .mesh: if the .mesh fails the old .sol is untouched; if the .sol cannot be
+/// written the new .mesh is removed again.
 void writeMeshAndSol(const std::string& meshPath, const Mesh2& mesh, const std::string& solPath,
                      std::span<const Metric2> metrics);
 /// Scalar .sol (type 1), one value per vertex (e.g. sizes h, or a P1 solution).

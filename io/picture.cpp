@@ -145,6 +145,15 @@ void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double
     cairo_line_to(cr, v.px(mesh.vertices[e.b].x()), v.py(mesh.vertices[e.b].y()));
   }
   cairo_stroke(cr);
+  if (!mesh.interfaceEdges.empty()) {
+    cairo_set_source_rgb(cr, 0.75, 0, 0);
+    cairo_set_line_width(cr, 1.5 * o.lineWidth + 0.6);
+    for (const auto& e : mesh.interfaceEdges) {
+      cairo_move_to(cr, v.px(mesh.vertices[e.a].x()), v.py(mesh.vertices[e.a].y()));
+      cairo_line_to(cr, v.px(mesh.vertices[e.b].x()), v.py(mesh.vertices[e.b].y()));
+    }
+    cairo_stroke(cr);
+  }
   c.save(path);
 }
 

@@ -19,7 +19,7 @@ struct PictureOptions {
   double lineWidth = 0.6;  ///< pixels, mesh edges
 };
 
-/// Mesh edges (boundary edges thicker). If `triangleValues` is non-empty (one per triangle),
+/// Mesh edges (boundary edges thicker, interface edges thicker and dark red). If `triangleValues` is non-empty (one per triangle),
 /// triangles are filled by value with a colour bar labelled `valueName`.
 void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double> triangleValues = {},
               const std::string& valueName = "", const PictureOptions& options = {});

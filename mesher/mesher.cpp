@@ -128,6 +128,7 @@ MeshResult meshDomain(const Domain& domain, const MetricField& metric, const Mes
   result.stats.connect = connected.stats;
   result.metric.reserve(connected.nodeOfVertex.size());
   for (int node : connected.nodeOfVertex) result.metric.push_back(placement.metrics[node]);
+  placement = {};  // the nodes, their lists and metrics are in the mesh now: freed before the post-pass
   // The quality post-pass (improve.hpp): moved vertices get the field's metric in result.metric;
   // a collapse removes a vertex from both the mesh and result.metric (they stay in step).
   if (options.improve.enabled) report("improve", connected.mesh.numVertices());

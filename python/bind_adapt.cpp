@@ -33,7 +33,7 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
                      'h1': W^{1,inf} would crowd the vertices into a corner singularity)
   (every default is AdaptOptions' in adapt/adaptive_loop.hpp, i.e. `ablmg adapt`'s: the call
   with no options gives the metric of its loop; ablmg.ADAPT_DEFAULTS lists them)
-  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.15 with
+  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.05 with
                      norm 'l2', the H1 shape with 'h1'); 0: the Lp shape
   hmin, hmax         size bounds; hmax = inf means a quarter of the bounding-box diagonal
   max_anisotropy     largest h1/h2 (>= 1)

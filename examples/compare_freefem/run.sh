@@ -74,6 +74,8 @@ fi
 now() { date +%s.%N; }
 commit=$(git -C "$repo" rev-parse --short HEAD 2> /dev/null || echo unknown)
 read -r -a extra <<< "${ABLMG_ADAPT_FLAGS:-}"
+maxnvArg=""
+[[ "$maxnv" == 1.2e5 ]] || maxnvArg=" --maxnv $maxnv"
 
 for name in $problem; do
   IFS='|' read -r edp ffargs abargs <<< "$(spec "$name")"
@@ -114,8 +116,6 @@ for name in $problem; do
   {
     echo "### $name"
     echo
-    maxnvArg=""
-    [[ "$maxnv" == 1.2e5 ]] || maxnvArg=" --maxnv $maxnv"
     echo "Measured $(date -u +%Y-%m-%d), commit $commit, \`examples/compare_freefem/run.sh --problem $name$maxnvArg\`" \
       "(FreeFem++ $edp $ffargs; ablmg adapt $abargs --vertices $nff${extra[*]:+ ${extra[*]}})."
     tail -n +2 "$dir/compare_body.md"
@@ -141,5 +141,5 @@ body="$out/section.md"
   done
 } > "$body"
 /usr/bin/python3 "$repo/scripts/update_benchmarks.py" compare_freefem "$body" \
-  --command "examples/compare_freefem/run.sh --problem $problemArg"
+  --command "examples/compare_freefem/run.sh --problem $problemArg$maxnvArg"
 echo "Wrote docs/benchmarks.md (section compare_freefem) and docs/figures/compare_freefem_*.png"

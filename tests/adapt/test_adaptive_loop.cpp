@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <cmath>
+#include <map>
 
 using namespace ablmg;
 using namespace ablmg::adapt;
@@ -123,12 +124,13 @@ TEST(AdaptiveLoop, ProblemWithoutExactSolution) {
 }
 
 TEST(AdaptiveLoop, GeometricScheduleEndsAtNWithPassesBelowTheThreshold) {
-  ScheduleOptions o;  // N_0 400, growth 2, 2 passes below 10⁴
+  ScheduleOptions o;  // N_0 400, growth 2, 3 passes below 10⁴
   const auto s = geometricSchedule(15000, o);
-  // 15000 / 2^k down to [400, 800): 469, 938, 1875, 3750, 7500 twice each, then 15000 once.
-  const std::vector<double> expect{469, 469, 938, 938, 1875, 1875, 3750, 3750, 7500, 7500, 15000};
+  // 15000 / 2^k down to [400, 800): 469, 938, 1875, 3750, 7500 three times each, then 15000 once.
+  const std::vector<double> expect{469,  469,  469,  938,  938,  938,  1875, 1875,
+                                   1875, 3750, 3750, 3750, 7500, 7500, 7500, 15000};
   EXPECT_EQ(s, expect);
-  EXPECT_EQ(geometricSchedule(300, o), std::vector<double>({300, 300}));  // N ≤ N_0: N only
+  EXPECT_EQ(geometricSchedule(300, o), std::vector<double>({300, 300, 300}));  // N ≤ N_0: N only
   o.passes = 1;
   o.growth = 4;
   EXPECT_EQ(geometricSchedule(6400, o), std::vector<double>({400, 1600, 6400}));
@@ -143,6 +145,7 @@ TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   AdaptOptions o;
   ScheduleOptions s;
   s.startVertices = 300;
+  s.passes = 2;
   o.targetVertices = geometricSchedule(1200, s);  // 300 ×2, 600 ×2, 1200 ×2
   const AdaptReport r = runAdaptiveLoop(fem::makeProblem("wavefront"), o);
   ASSERT_EQ(r.cycles.size(), 6u);
@@ -157,7 +160,7 @@ TEST(AdaptiveLoop, SlitProblemKeepsTheLipsApartAtTheOptimalH1Rate) {
   // tip, no edge from a lip vertex to the other side), and the H1 error falls at ≈ N^(−1/2).
   const fem::TestProblem p = fem::makeProblem("reentrant", {{"omega", 2 * M_PI}});
   AdaptOptions o;
-  o.targetVertices = geometricSchedule(2000, {.startVertices = 250});  // 250 ×2, 500 ×2, 1000 ×2, 2000 ×2
+  o.targetVertices = geometricSchedule(2000, {.startVertices = 250, .passes = 2});  // 250 ×2, 500 ×2, 1000 ×2, 2000 ×2
   int crossing = 0, sharedLip = 0;
   const auto report = runAdaptiveLoop(p, o, [&](const CycleData& c) {
     ASSERT_TRUE(c.mesh.validate().ok) << c.mesh.validate().firstProblem;
@@ -180,4 +183,36 @@ TEST(AdaptiveLoop, SlitProblemKeepsTheLipsApartAtTheOptimalH1Rate) {
   EXPECT_EQ(crossing, 0);
   EXPECT_TRUE(report.errorsDecrease);
   EXPECT_LE(report.h1Rate, -0.45);
+}
+
+// Mitchell's battery (fem/material_problems.hpp): κ jumps by 500× between materials. The loop
+// keeps the five materials and their interfaces in every mesh, and its errors against a
+// reference solution (the loop's own, on many more vertices) fall cycle by cycle.
+TEST(AdaptiveLoop, BatteryKeepsItsMaterialsAndErrorsAgainstAReferenceFall) {
+  const AdaptProblem base = adaptProblem(fem::makeMaterialProblem("battery"));
+  AdaptOptions o;
+  o.targetVertices = {250, 500, 1000};
+  AdaptProblem problem = base;
+  const ReferenceSolution ref = referenceSolution(base, 4000, o);
+  EXPECT_GT(ref.vertices, 3500);
+  problem.exact = ref.exact;
+  std::map<int, double> regionArea;
+  for (int t = 0; t < base.regions.numTriangles(); ++t)
+    regionArea[base.regions.triangleRefs[std::size_t(t)]] += base.regions.triangleArea(t);
+  const AdaptReport r = runAdaptiveLoop(problem, o, [&](const CycleData& c) {
+    ASSERT_TRUE(c.mesh.validate(8.4 * 24, 1e-12).ok) << c.mesh.validate().firstProblem;
+    std::map<int, double> area;
+    for (int t = 0; t < c.mesh.numTriangles(); ++t) area[c.mesh.triangleRefs[std::size_t(t)]] += c.mesh.triangleArea(t);
+    ASSERT_EQ(area.size(), 5u) << "cycle " << c.report.cycle;
+    for (const auto& [m, a] : regionArea) EXPECT_NEAR(area[m], a, 1e-11 * a) << "material " << m;
+    EXPECT_LT(uncoveredInterfaceLength(base.regions, c.mesh), 1e-12 * 95) << "cycle " << c.report.cycle;
+  });
+  ASSERT_EQ(r.cycles.size(), 3u);
+  for (std::size_t k = 1; k < r.cycles.size(); ++k) {
+    EXPECT_LT(r.cycles[k].l2, 0.7 * r.cycles[k - 1].l2) << "cycle " << k;
+    EXPECT_LT(r.cycles[k].h1, 0.8 * r.cycles[k - 1].h1) << "cycle " << k;
+  }
+  // a mesh that ignores the interfaces does not resolve them
+  Mesh2 plain = uniformMesh(base.domain, 600).mesh;
+  EXPECT_GT(uncoveredInterfaceLength(base.regions, plain), 10.0);
 }

@@ -109,3 +109,55 @@ TEST(HessianRecovery, RejectsBadInput) {
   EXPECT_THROW(parseHessianMethod("cubic"), InputError);
   EXPECT_EQ(parseHessianMethod("double"), HessianMethod::DoubleRecovery);
 }
+
+namespace {
+/// A kink across x = 0.5 (the gradient jumps by 3, as a P1 solution's does across an interface
+/// between materials): quadratic (u_xx = 2) on each side, refs 1 (x < 0.5) and 2.
+double kinked(const Vec2& p) { return p.x() * p.x() + 3 * std::max(p.x() - 0.5, 0.0) + 0.5 * p.y(); }
+Mesh2 twoMaterialGrid(int n) {
+  std::vector<double> xs, ys;
+  for (int i = 0; i <= n; ++i) xs.push_back(double(i) / n), ys.push_back(double(i) / n);
+  return fem::gridRegionMesh(xs, ys, [](double x, double) { return x < 0.5 ? 1 : 2; });
+}
+}  // namespace
+
+TEST(HessianRecovery, SubdomainsAreRecoveredApartSoAKinkOnTheInterfaceIsNoCurvature) {
+  Mesh2 mesh = twoMaterialGrid(16);
+  const auto u = sample(mesh, kinked);
+  for (HessianMethod method : {HessianMethod::LeastSquares, HessianMethod::DoubleRecovery}) {
+    const auto h = recoverHessians(mesh, u, method);
+    double worst = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v) worst = std::max(worst, std::abs(h[std::size_t(v)](0, 0) - 2));
+    // exact: each side is a quadratic, recovered on its own
+    EXPECT_LT(worst, 1e-6) << toString(method);
+    // one subdomain: the fit across the kink reads it as a curvature of order 3/h there
+    Mesh2 one = mesh;
+    one.triangleRefs.assign(one.triangles.size(), 1);
+    one.interfaceEdges.clear();
+    const auto h1 = recoverHessians(one, u, method);
+    double across = 0;
+    for (int v = 0; v < one.numVertices(); ++v) across = std::max(across, std::abs(h1[std::size_t(v)](0, 0)));
+    EXPECT_GT(across, 10.0) << toString(method);
+  }
+}
+
+TEST(HessianRecovery, CombinedInterfaceHessianIsTheIntersectionOfTheAbsoluteValues) {
+  Hessian2 a, b;
+  a << 4, 0, 0, -1;  // |a| = diag(4, 1)
+  b << 1, 0, 0, 9;
+  const Hessian2 c = detail::combineSubdomainHessians(a, b);
+  EXPECT_NEAR(c(0, 0), 4, 1e-12);
+  EXPECT_NEAR(c(1, 1), 9, 1e-12);
+  EXPECT_NEAR(c(0, 1), 0, 1e-12);
+  const Hessian2 z = Hessian2::Zero();
+  EXPECT_NEAR((detail::combineSubdomainHessians(z, a) - Hessian2(Eigen::Vector2d(4, 1).asDiagonal())).norm(), 0, 1e-12);
+  // along every direction the combined form is at least each one's
+  Hessian2 r;
+  r << 2, 1.5, 1.5, 3;
+  const Hessian2 cr = detail::combineSubdomainHessians(a, r);
+  for (int k = 0; k < 16; ++k) {
+    const Eigen::Vector2d d(std::cos(k * 0.2), std::sin(k * 0.2));
+    EXPECT_GE(d.dot(cr * d), d.dot(Eigen::Vector2d(4 * d.x(), d.y())) - 1e-10);
+    EXPECT_GE(d.dot(cr * d), d.dot(r * d) - 1e-10);
+  }
+}

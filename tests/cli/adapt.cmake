@@ -125,6 +125,14 @@ if(CMAKE_SCRIPT_MODE_FILE AND MODE STREQUAL "figures")
   if(_h1 GREATER ${MAX_H1_RATE} OR _l2 GREATER ${MAX_L2_RATE})
     message(FATAL_ERROR "rates H1 ${_h1} (need <= ${MAX_H1_RATE}), L2 ${_l2} (need <= ${MAX_L2_RATE})")
   endif()
+  if(DEFINED CHECK_INTERFACES)  # subdomains: the final mesh's interfaces cover the input's
+    string(JSON _unc GET "${_j}" interfaces uncovered)
+    string(JSON _len GET "${_j}" interfaces length)
+    message(STATUS "interfaces: ${_unc} of ${_len} uncovered")
+    if(_unc GREATER 1e-9 OR NOT _len GREATER 0)
+      message(FATAL_ERROR "interfaces not resolved: ${_unc} of their length ${_len} uncovered")
+    endif()
+  endif()
   if(DEFINED MIN_UNIFORM_RATIO)
     string(JSON _ratio GET "${_j}" uniform_match h1 ratio)
     message(STATUS "finest uniform H1 error reached with ${_ratio}x fewer vertices")
@@ -261,3 +269,13 @@ foreach(case
                    -DOUTDIR=${_dir}/schedule_${_name} -P ${CMAKE_CURRENT_LIST_FILE})
   set_tests_properties(cli_adapt_schedule_${_name} PROPERTIES LABELS cli)
 endforeach()
+
+# Mitchell's battery (five materials, no exact solution): errors against the loop's own
+# solution at 4000 vertices fall whenever the size grows, and the final mesh resolves every
+# interface of the materials.
+add_test(NAME cli_adapt_battery
+         COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DMODE=figures
+                 "-DARGS=--problem battery --target-vertices 250,500,1000 --reference-vertices 4000"
+                 -DMAX_H1_RATE=-0.45 -DMAX_L2_RATE=-0.9 -DFALL_FROM=1 -DCHECK_INTERFACES=1
+                 -DOUTDIR=${_dir}/battery -P ${CMAKE_CURRENT_LIST_FILE})
+set_tests_properties(cli_adapt_battery PROPERTIES LABELS cli)

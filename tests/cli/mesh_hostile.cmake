@@ -121,6 +121,24 @@ ablmg_cli_failure(hostile_ridge_out_of_range "bad_ridge.mesh:[0-9]+: Ridges name
 file(WRITE ${_hdir}/lonely_edge.mesh "${_sq}Edges\n1\n1 3 1\nTriangles\n2\n1 2 5 1\n2 3 5 1\nEnd\n")
 ablmg_cli_failure(hostile_edge_in_no_triangle "lonely_edge.mesh: edge \\(1, 3\\) of Edges is a side of no triangle"
                   remesh -in ${_hdir}/lonely_edge.mesh -hsiz 0.2 -out ${_hdir}/lonely_edge.o.mesh)
+# Boundary-only medit inputs (Edges, no Triangles): loops that cross, an open chain, a branch,
+# a corner on no edge; and a good one meshed.
+set(_two_sq "MeshVersionFormatted 2\nDimension 2\nVertices\n8\n0 0 0\n2 0 0\n2 2 0\n0 2 0\n1 1 0\n3 1 0\n3 3 0\n1 3 0\n")
+file(WRITE ${_hdir}/bo_cross.mesh "${_two_sq}Edges\n8\n1 2 1\n2 3 1\n3 4 1\n4 1 1\n5 6 2\n6 7 2\n7 8 2\n8 5 2\nEnd\n")
+ablmg_cli_failure(hostile_boundary_loops_cross "bo_cross.mesh: edges \\([0-9], [0-9]\\) and \\([0-9], [0-9]\\) cross"
+                  remesh -in ${_hdir}/bo_cross.mesh -hsiz 0.2 -out ${_hdir}/bo_cross.o.mesh)
+file(WRITE ${_hdir}/bo_open.mesh "${_two_sq}Edges\n3\n1 2 1\n2 3 1\n3 4 1\nEnd\n")
+ablmg_cli_failure(hostile_boundary_open_chain "bo_open.mesh: open chain of edges: vertex [14] .* is on one edge"
+                  remesh -in ${_hdir}/bo_open.mesh -hsiz 0.2 -out ${_hdir}/bo_open.o.mesh)
+file(WRITE ${_hdir}/bo_branch.mesh "${_two_sq}Edges\n5\n1 2 1\n2 3 1\n3 4 1\n4 1 1\n1 3 1\nEnd\n")
+ablmg_cli_failure(hostile_boundary_branch "bo_branch.mesh: vertex [13] .* is on 3 edges"
+                  remesh -in ${_hdir}/bo_branch.mesh -hsiz 0.2 -out ${_hdir}/bo_branch.o.mesh)
+file(WRITE ${_hdir}/bo_corner.mesh "${_two_sq}Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nCorners\n1\n7\nEnd\n")
+ablmg_cli_failure(hostile_boundary_corner_on_no_edge "bo_corner.mesh: corner 7 is on no edge"
+                  remesh -in ${_hdir}/bo_corner.mesh -hsiz 0.2 -out ${_hdir}/bo_corner.o.mesh)
+file(WRITE ${_hdir}/bo_good.mesh "${_two_sq}Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nEnd\n")
+add_test(NAME cli.remesh_boundary_only COMMAND ablmg remesh -in ${_hdir}/bo_good.mesh -hsiz 0.2 -out ${_hdir}/bo_good.o.mesh)
+set_tests_properties(cli.remesh_boundary_only PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "8 -> [0-9]+ vertices")
 ablmg_cli_failure(hostile_bad_met_field "-met-field" remesh -in ${_hdir}/req_inside.mesh -met-field 0 -out ${_hdir}/x.o.mesh)
 ablmg_hostile_config(bad_preset "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"preset\": \"fast\"}}")
 ablmg_cli_failure(config_bad_preset "bad_preset.json: options.preset: .*expected mesh, remesh or adapt, got 'fast'"

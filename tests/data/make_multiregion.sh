@@ -2,6 +2,8 @@
 # Writes the multi-subdomain medit test meshes with the tools that make them in practice:
 #   ff_inclusion.mesh      FreeFem++ buildmesh: unit square (labels 1-4) with a disk inclusion
 #                          (label 5); two subdomains (FreeFem region numbers), Edges with labels
+#   ff_disk_inclusion.mesh FreeFem++ buildmesh: the unit disk (label 1) with an off-centre disk
+#                          inclusion of radius 0.4 (label 2): curved outer boundary and interface
 #   gmsh_two_regions.mesh  gmsh -2 -format mesh: [0,2]x[0,1] cut by a two-segment interface
 #                          into two surfaces; Dimension 3, z = 0; gmsh writes the elementary
 #                          entity tags as refs (curves 7 and 8 on the interface, surfaces 1 and 2)
@@ -21,6 +23,14 @@ savemesh(Th, "ff_inclusion.mesh");
 EDP
 (cd "$tmp" && FreeFem++ -nw inclusion.edp > /dev/null)
 cp "$tmp/ff_inclusion.mesh" "$here/ff_inclusion.mesh"
+cat > "$tmp/disk_inclusion.edp" <<'EDP'
+border a(t=0,2*pi){x=cos(t); y=sin(t); label=1;}
+border b(t=0,2*pi){x=0.2+0.4*cos(t); y=0.1+0.4*sin(t); label=2;}
+mesh Th = buildmesh(a(48)+b(24));
+savemesh(Th, "ff_disk_inclusion.mesh");
+EDP
+(cd "$tmp" && FreeFem++ -nw disk_inclusion.edp > /dev/null)
+cp "$tmp/ff_disk_inclusion.mesh" "$here/ff_disk_inclusion.mesh"
 cat > "$tmp/two.geo" <<'GEO'
 lc = 0.1;
 Point(1) = {0, 0, 0, lc}; Point(2) = {1, 0, 0, lc}; Point(3) = {2, 0, 0, lc};
@@ -35,4 +45,4 @@ Physical Curve(7) = {7, 8};
 Physical Surface(10) = {1}; Physical Surface(20) = {2};
 GEO
 gmsh -2 -format mesh "$tmp/two.geo" -o "$here/gmsh_two_regions.mesh" > /dev/null
-echo "wrote $here/ff_inclusion.mesh $here/gmsh_two_regions.mesh"
+echo "wrote $here/ff_inclusion.mesh $here/ff_disk_inclusion.mesh $here/gmsh_two_regions.mesh"

@@ -187,6 +187,54 @@ TEST(Medit, WriteMeshAndSolLeavesNoMeshWhenTheSolFails) {
   std::filesystem::remove(ps);
 }
 
+TEST(Medit, WriteMeshAndSolLeavesTheOldSolWhenTheMeshFails) {
+  const Mesh2 m = io::readMesh(kData + "/square.mesh");
+  const auto metrics = io::readSol(kData + "/square.sol", m.numVertices());
+  const auto pm = tmpPath("blocked2.mesh"), ps = tmpPath("kept.sol");
+  io::writeSol(ps, std::vector<Metric2>{Metric2::fromTensor(4, 0.5, 0.1)});
+  const std::string before = fileText(ps);
+  std::filesystem::create_directories(pm);  // a directory where the .mesh should go: rename fails
+  EXPECT_THROW(io::writeMeshAndSol(pm, m, ps, metrics), Error);
+  EXPECT_EQ(fileText(ps), before);
+  std::filesystem::remove(pm);
+  std::filesystem::remove(ps);
+}
+
+TEST(Medit, StreamedTextOfManyBlocksReadsBackBitwise) {
+  // ≈ 5 MB of .mesh text: the writer hands it over in 1 MB blocks.
+  Mesh2 m;
+  const int n = 250;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.vertices.emplace_back(std::sqrt(2.0) * i / n, double(j) / (3 * n));
+  const auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (int i = 0; i < n; ++i) {
+    m.boundaryEdges.push_back({id(i, 0), id(i + 1, 0), 1});
+    m.boundaryEdges.push_back({id(n, i), id(n, i + 1), 2});
+    m.boundaryEdges.push_back({id(i + 1, n), id(i, n), 3});
+    m.boundaryEdges.push_back({id(0, i + 1), id(0, i), 4});
+  }
+  std::vector<Metric2> metrics;
+  for (const Vec2& p : m.vertices) metrics.push_back(Metric2::fromTensor(1 + p.x(), 0.1 * p.y(), 2 + p.y()));
+  const auto pm = tmpPath("big.mesh"), ps = tmpPath("big.sol");
+  io::writeMeshAndSol(pm, m, ps, metrics);
+  EXPECT_GT(std::filesystem::file_size(pm), std::uintmax_t(3) << 20);
+  const Mesh2 r = io::readMesh(pm);
+  ASSERT_EQ(r.vertices.size(), m.vertices.size());
+  EXPECT_TRUE(r.vertices == m.vertices);
+  EXPECT_TRUE(r.triangles == m.triangles);
+  const auto rm = io::readSol(ps, r.numVertices());
+  ASSERT_EQ(rm.size(), metrics.size());
+  for (std::size_t k = 0; k < rm.size(); ++k)
+    EXPECT_TRUE(rm[k].m11() == metrics[k].m11() && rm[k].m12() == metrics[k].m12() && rm[k].m22() == metrics[k].m22());
+  std::filesystem::remove(pm);
+  std::filesystem::remove(ps);
+}
+
 TEST(Medit, NumbersInEveryStrtodFormReadTheSame) {
   // The fast from_chars path and the strtod fallback must agree: '+' signs, exponents, a
   // leading '.', an underflow to a subnormal, an int written "+3".
