@@ -110,7 +110,8 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
     metrics.assign(std::size_t(mesh.numVertices()), Metric2::isotropic(hsiz));
   else if (!solOk || long(metrics.size()) != mesh.numVertices())
     metrics = io::readSol(sol, mesh.numVertices(), field);
-  if (!valid && mesh.numTriangles() > 0) mesh.requireValid(in);  // edges only: remesh() triangulates them
+  // Edges only: remesh() triangulates them. Errors name the file's own (1-based) ids.
+  if (!valid && mesh.numTriangles() > 0) mesh.requireValid(in, std::nullopt, 1e-9, 1);
   if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
     for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
   return {std::move(mesh), std::move(metrics)};

@@ -343,7 +343,7 @@ std::unique_ptr<MetricField> parseMetric(const json& j, const Where& w, const st
     const std::string solPath = resolve(getString(j["sol"], w / "sol"), baseDir);
     Mesh2 mesh = io::readMesh(meshPath);
     auto metrics = io::readSol(solPath, mesh.numVertices());
-    mesh.requireValid(meshPath);
+    mesh.requireValid(meshPath, std::nullopt, 1e-9, 1);  // the file's own (1-based) ids in errors
     description = "background mesh " + meshPath + " (" + std::to_string(mesh.numVertices()) + " vertices) + " + solPath;
     return std::make_unique<BackgroundMetricField>(std::move(mesh), std::move(metrics));
   }

@@ -59,8 +59,9 @@ double Mesh2::area() const {
   return a;
 }
 
-MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTolerance) const {
+MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTolerance, int idBase) const {
   MeshValidation r;
+  const auto id = [idBase](int v) { return std::to_string(v + idBase); };
   auto problem = [&](const std::string& s) {
     if (r.ok) r.firstProblem = s;
     r.ok = false;
@@ -68,7 +69,7 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
   const int nv = numVertices();
   for (int v = 0; v < nv; ++v)
     if (!std::isfinite(vertices[v].x()) || !std::isfinite(vertices[v].y())) {
-      problem("vertex " + std::to_string(v) + " has a non-finite coordinate");
+      problem("vertex " + id(v) + " has a non-finite coordinate");
       return r;
     }
   if (triangles.empty()) {
@@ -80,14 +81,15 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
     const auto& tr = triangles[t];
     for (int k = 0; k < 3; ++k)
       if (tr[k] < 0 || tr[k] >= nv) {
-        problem("triangle " + std::to_string(t) + " refers to vertex " + std::to_string(tr[k]) + " out of range");
+        problem("triangle " + id(t) + " refers to vertex " + id(tr[k]) + " out of range");
         return r;
       }
     for (int k = 0; k < 3; ++k) used[tr[k]] = 1;
     if (orient2d(vertices[tr[0]], vertices[tr[1]], vertices[tr[2]]) <= 0) {
       ++r.invertedTriangles;
       std::ostringstream os;
-      os << "triangle " << t << " (" << tr[0] << ", " << tr[1] << ", " << tr[2] << ") is inverted or degenerate";
+      os << "triangle " << id(t) << " (" << id(tr[0]) << ", " << id(tr[1]) << ", " << id(tr[2])
+         << ") is inverted or degenerate";
       problem(os.str());
     }
     r.area += triangleArea(t);
@@ -95,38 +97,35 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
   for (int v = 0; v < nv; ++v)
     if (!used[v]) {
       ++r.unusedVertices;
-      problem("vertex " + std::to_string(v) + " is used by no triangle");
+      problem("vertex " + id(v) + " is used by no triangle");
     }
   // Boundary edges as directed pairs, sorted for lookup.
   std::vector<std::array<int, 2>> bnd;
   bnd.reserve(boundaryEdges.size());
   for (const auto& e : boundaryEdges) {
     if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
-      problem("boundary edge (" + std::to_string(e.a) + ", " + std::to_string(e.b) + ") is out of range or degenerate");
+      problem("boundary edge (" + id(e.a) + ", " + id(e.b) + ") is out of range or degenerate");
       return r;
     }
     bnd.push_back({e.a, e.b});
   }
   std::sort(bnd.begin(), bnd.end());
   for (std::size_t i = 1; i < bnd.size(); ++i)
-    if (bnd[i] == bnd[i - 1])
-      problem("boundary edge (" + std::to_string(bnd[i][0]) + ", " + std::to_string(bnd[i][1]) + ") is listed twice");
+    if (bnd[i] == bnd[i - 1]) problem("boundary edge (" + id(bnd[i][0]) + ", " + id(bnd[i][1]) + ") is listed twice");
   std::vector<char> bndUsed(bnd.size(), 0);
   // Interface edges, undirected, sorted; each must turn out to be an interior edge.
   std::vector<std::array<int, 2>> itf;
   itf.reserve(interfaceEdges.size());
   for (const auto& e : interfaceEdges) {
     if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
-      problem("interface edge (" + std::to_string(e.a) + ", " + std::to_string(e.b) +
-              ") is out of range or degenerate");
+      problem("interface edge (" + id(e.a) + ", " + id(e.b) + ") is out of range or degenerate");
       return r;
     }
     itf.push_back({std::min(e.a, e.b), std::max(e.a, e.b)});
   }
   std::sort(itf.begin(), itf.end());
   for (std::size_t i = 1; i < itf.size(); ++i)
-    if (itf[i] == itf[i - 1])
-      problem("interface edge (" + std::to_string(itf[i][0]) + ", " + std::to_string(itf[i][1]) + ") is listed twice");
+    if (itf[i] == itf[i - 1]) problem("interface edge (" + id(itf[i][0]) + ", " + id(itf[i][1]) + ") is listed twice");
   std::vector<char> itfUsed(itf.size(), 0);
   const auto refOf = [&](int t) { return std::size_t(t) < triangleRefs.size() ? triangleRefs[std::size_t(t)] : 0; };
   const auto h = halfEdges(*this);
@@ -134,7 +133,7 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
     std::size_t j = i;
     while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
     const std::size_t count = j - i;
-    const auto name = [&] { return "edge (" + std::to_string(h[i].lo) + ", " + std::to_string(h[i].hi) + ")"; };
+    const auto name = [&] { return "edge (" + id(h[i].lo) + ", " + id(h[i].hi) + ")"; };
     const auto inItf = std::lower_bound(itf.begin(), itf.end(), std::array<int, 2>{h[i].lo, h[i].hi});
     const bool isItf = inItf != itf.end() && *inItf == std::array<int, 2>{h[i].lo, h[i].hi};
     if (isItf) itfUsed[std::size_t(inItf - itf.begin())] = 1;
@@ -164,17 +163,16 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
   for (std::size_t k = 0; k < bnd.size(); ++k)
     if (!bndUsed[k]) {
       ++r.openEdges;
-      problem("boundary edge (" + std::to_string(bnd[k][0]) + ", " + std::to_string(bnd[k][1]) +
+      problem("boundary edge (" + id(bnd[k][0]) + ", " + id(bnd[k][1]) +
               ") is not the edge of exactly one triangle on its left");
     }
   for (std::size_t k = 0; k < itf.size(); ++k)
     if (!itfUsed[k])
-      problem("interface edge (" + std::to_string(itf[k][0]) + ", " + std::to_string(itf[k][1]) +
-              ") is not an edge of the mesh");
+      problem("interface edge (" + id(itf[k][0]) + ", " + id(itf[k][1]) + ") is not an edge of the mesh");
   for (const auto* list : {&corners, &requiredVertices})
     for (int v : *list)
       if (v < 0 || v >= nv) {
-        problem((list == &corners ? "corner " : "required vertex ") + std::to_string(v) + " is out of range");
+        problem((list == &corners ? "corner " : "required vertex ") + id(v) + " is out of range");
         return r;
       }
   if (!requiredEdges.empty() || !ridges.empty()) {
@@ -183,8 +181,8 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
       for (const auto& e : *list) {
         const std::array<int, 2> k{std::min(e[0], e[1]), std::max(e[0], e[1])};
         if (!std::binary_search(all.begin(), all.end(), k))
-          problem(std::string(list == &ridges ? "ridge" : "required edge") + " (" + std::to_string(e[0]) + ", " +
-                  std::to_string(e[1]) + ") is not an edge of the mesh");
+          problem(std::string(list == &ridges ? "ridge" : "required edge") + " (" + id(e[0]) + ", " + id(e[1]) +
+                  ") is not an edge of the mesh");
       }
   }
   if (expectedArea) {
@@ -198,9 +196,12 @@ MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTo
   return r;
 }
 
-void Mesh2::requireValid(const std::string& what, std::optional<double> expectedArea, double areaTolerance) const {
-  const MeshValidation r = validate(expectedArea, areaTolerance);
-  if (!r.ok) ABLMG_FAIL(what << ": invalid mesh: " << r.firstProblem);
+void Mesh2::requireValid(const std::string& what, std::optional<double> expectedArea, double areaTolerance,
+                         int idBase) const {
+  const MeshValidation r = validate(expectedArea, areaTolerance, idBase);
+  if (!r.ok)
+    ABLMG_FAIL(what << ": invalid mesh" << (idBase == 1 ? " (ids from 1, as in the file)" : "") << ": "
+                    << r.firstProblem);
 }
 
 std::vector<std::array<int, 2>> Mesh2::edges() const {

@@ -59,11 +59,15 @@ class Mesh2 {
   double triangleArea(int t) const;
 
   /// Checks the invariants above. If `expectedArea` is given, the area must also match it to
-  /// relative `areaTolerance`. Never throws; see requireValid() for the throwing form.
-  MeshValidation validate(std::optional<double> expectedArea = std::nullopt, double areaTolerance = 1e-9) const;
-  /// validate() and throw ablmg::Error("<what>: <firstProblem>") when it fails.
+  /// relative `areaTolerance`. Never throws; see requireValid() for the throwing form. The ids
+  /// in firstProblem are printed plus `idBase` (1 for a mesh read from a 1-based medit file, so
+  /// that the message names the file's own vertex and triangle numbers).
+  MeshValidation validate(std::optional<double> expectedArea = std::nullopt, double areaTolerance = 1e-9,
+                          int idBase = 0) const;
+  /// validate() and throw ablmg::Error("<what>: invalid mesh: <firstProblem>") when it fails
+  /// (with idBase 1: "invalid mesh (ids from 1, as in the file)").
   void requireValid(const std::string& what, std::optional<double> expectedArea = std::nullopt,
-                    double areaTolerance = 1e-9) const;
+                    double areaTolerance = 1e-9, int idBase = 0) const;
 
   /// Unique undirected edges (a < b), sorted.
   std::vector<std::array<int, 2>> edges() const;

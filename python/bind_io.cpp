@@ -48,8 +48,7 @@ void bindIo(py::module_& m) {
         {
           py::gil_scoped_release release;
           r.mesh = io::readMesh(path);
-          const MeshValidation v = r.mesh.validate();
-          ABLMG_REQUIRE(v.ok, path << ": invalid mesh: " << v.firstProblem);
+          r.mesh.requireValid(path, std::nullopt, 1e-9, 1);  // the file's own (1-based) ids in errors
           if (sol) r.metric = io::readSol(*sol, r.mesh.numVertices());
         }
         return r;

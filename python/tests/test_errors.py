@@ -267,6 +267,19 @@ def test_coincident_vertices():
         ablmg.remesh(pts, TRI, np.full(6, 0.2))
 
 
+def test_invalid_file_mesh_names_the_files_ids(tmp_path):
+    """a mesh read from a medit file is judged in the file's own 1-based numbering"""
+    path = tmp_path / "unused.mesh"
+    path.write_text("MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n5 5 0\n"
+                    "Triangles\n2\n1 2 3 1\n1 3 4 1\nEnd\n")
+    with pytest.raises(ValueError, match=r"unused.mesh: invalid mesh \(ids from 1, as in the file\): vertex 5 is used"):
+        ablmg.read_mesh(str(path))
+    # The same mesh as arrays: ids from 0, as in the arrays.
+    pts = np.array([[0, 0], [1, 0], [1, 1], [0, 1], [5, 5]], dtype=float)
+    with pytest.raises(ValueError, match=r"invalid mesh: vertex 4 is used"):
+        ablmg.remesh(pts, np.array([[0, 1, 2], [0, 2, 3]]), np.full(5, 0.2))
+
+
 # --- other argument checks -------------------------------------------------------------------
 
 def test_inverted_and_degenerate_triangles():

@@ -46,7 +46,7 @@ ablmg_cli_failure(remesh_both_bad "truncated.mesh:[0-9]+: " remesh -in ${_data}/
 ablmg_cli_failure(remesh_missing_sol "no_such.sol: cannot open" remesh -in ${_data}/square.mesh -sol ${_data}/no_such.sol -out ${_out}/remesh_missing_sol.mesh)
 file(WRITE ${_out}/overlap.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0.5 0\n"
                                 "Edges\n4\n1 2 1\n2 3 1\n3 4 1\n4 1 1\nTriangles\n5\n1 2 5 0\n2 3 5 0\n3 4 5 0\n4 1 5 0\n1 2 3 0\nEnd\n")
-ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh: " remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
+ablmg_cli_failure(remesh_invalid_mesh "overlap.mesh: invalid mesh \\(ids from 1, as in the file\\): triangle 5 \\(1, 2, 3\\)|overlap.mesh: invalid mesh \\(ids from 1, as in the file\\): edge \\([1-5], [1-5]\\)" remesh -in ${_out}/overlap.mesh -sol ${_data}/square.sol -out ${_out}/remesh_invalid_mesh.mesh)
 ablmg_cli_failure(remesh_invalid_mesh_bad_sol "nonspd.sol:13: tensor of vertex 5" remesh -in ${_out}/overlap.mesh -sol ${_data}/nonspd.sol -out ${_out}/remesh_invalid_mesh_bad_sol.mesh)
 # Two boundary loops touching at vertex 3 (a valid mesh, but not a domain).
 file(WRITE ${_out}/bowtie.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 1\n1 0 1\n1 1 1\n2 1 1\n2 2 1\n"
@@ -92,7 +92,7 @@ ablmg_cli_failure(remesh_negative_metric_quantum "remesh: --metric-quantum must 
 # (the second is no side of a triangle): clean errors naming the file.
 file(WRITE ${_out}/required_outside.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n5\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n5 5 0\n"
                                          "Triangles\n2\n1 2 3 1\n1 3 4 1\nRequiredVertices\n1\n5\nEnd\n")
-ablmg_cli_failure(remesh_required_outside "required_outside.mesh: invalid mesh: vertex [0-9]+ is used by no triangle"
+ablmg_cli_failure(remesh_required_outside "required_outside.mesh: invalid mesh \\(ids from 1, as in the file\\): vertex 5 is used by no triangle"
                   remesh -in ${_out}/required_outside.mesh -hsiz 0.2 -out ${_out}/remesh_required_outside.mesh)
 file(WRITE ${_out}/crossing_interfaces.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
                                             "Triangles\n2\n1 2 3 1\n1 3 4 1\nEdges\n2\n1 3 5\n2 4 6\nEnd\n")
