@@ -131,8 +131,26 @@ bool needsSubdomains(const Mesh2& mesh);
 /// The subdomain path of remesh(): `mesh` valid, `field` its background field; fills out.mesh,
 /// out.metric, out.stats (counts summed over the subdomains). Throws InputError naming `name`
 /// for a required vertex inside a subdomain or a subdomain that is no valid Domain.
-void remeshSubdomains(const Mesh2& mesh, const BackgroundMetricField& field, const mesher::MeshOptions& options,
+void remeshSubdomains(const Mesh2& mesh, const MetricField& field, const mesher::MeshOptions& options,
                       const std::string& name, RemeshResult& out);
+
+/// A region of a domain with its own triangle ref: a closed polygon (≥ 3 points, either
+/// orientation) strictly inside the domain, touching neither its boundary nor another region
+/// (regions may nest).
+struct TaggedRegion {
+  std::vector<Vec2> points;
+  int tag = 1;  ///< ≥ 1: the triangle ref inside it (and the ref of its boundary, an interface)
+};
+/// meshDomain for a domain with regions: the domain's loops and the region polygons are
+/// triangulated on their points (triangulateBoundary, interior loops as interfaces, the
+/// domain's holes dropped), then meshed subdomain by subdomain to `field` (remeshSubdomains:
+/// no ABLMG link crosses a region boundary). Triangles outside every region get ref 0, those
+/// in a region its tag (the innermost region's when they nest). Throws InputError naming
+/// `name` and the region for a tag < 1, a point outside the domain or regions that cross or
+/// touch; the domain may not have slits.
+mesher::MeshResult meshDomainWithRegions(const Domain& domain, const std::vector<TaggedRegion>& regions,
+                                         const MetricField& field, const mesher::MeshOptions& options,
+                                         const std::string& name = "domain");
 
 /// meshDomain(domain, BackgroundMetricField(mesh, metric), options): remeshing a domain the
 /// caller knows exactly (e.g. a curved boundary, which the input mesh only approximates).

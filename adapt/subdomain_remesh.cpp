@@ -323,7 +323,7 @@ bool needsSubdomains(const Mesh2& mesh) {
          mesh.triangleRefs.end();
 }
 
-void remeshSubdomains(const Mesh2& input, const BackgroundMetricField& field, const mesher::MeshOptions& options,
+void remeshSubdomains(const Mesh2& input, const MetricField& field, const mesher::MeshOptions& options,
                       const std::string& name, RemeshResult& out) {
   Mesh2 cutMesh;
   const std::vector<char> lip = lipVertices(input);

@@ -144,7 +144,9 @@ int runMesh(const std::vector<std::string>& args) {
     metric = std::move(placed.metrics);
     stats = {{"placement", placementStatsJson(placed.stats)}};
   } else {
-    auto r = mesher::meshDomain(cfg.domain, *cfg.metric, cfg.options);
+    auto r = cfg.regions.empty()
+                 ? mesher::meshDomain(cfg.domain, *cfg.metric, cfg.options)
+                 : adapt::meshDomainWithRegions(cfg.domain, cfg.regions, *cfg.metric, cfg.options, configPath);
     mesh = std::move(r.mesh);
     metric = std::move(r.metric);
     stats = meshStatsJson(r.stats);

@@ -177,6 +177,29 @@ json bindingsToJson(const S& s, const std::vector<Binding<S>>& bindings) {
 
 Domain parseDomain(const json& j, const Where& w, const std::string& baseDir);
 
+/// "regions": [{"points": [[x, y], ...] (≥ 3), "tag": T (integer ≥ 1)}, ...].
+std::vector<adapt::TaggedRegion> parseRegions(const json& R, const Where& wr) {
+  requireType(R, R.is_array(), "array of regions {\"points\": [[x, y], ...], \"tag\": T}", wr);
+  std::vector<adapt::TaggedRegion> out;
+  for (std::size_t k = 0; k < R.size(); ++k) {
+    const Where wk = wr[k];
+    requireObject(R[k], wk);
+    checkKeys(R[k], {"points", "tag"}, wk);
+    ABLMG_REQUIRE(R[k].contains("points"), wk.str() << ": points: missing (required)");
+    ABLMG_REQUIRE(R[k].contains("tag"), wk.str() << ": tag: missing (required, an integer >= 1)");
+    const json& P = R[k]["points"];
+    requireType(P, P.is_array() && P.size() >= 3, "array of >= 3 points [x, y]", wk / "points");
+    adapt::TaggedRegion r;
+    for (std::size_t i = 0; i < P.size(); ++i) r.points.push_back(getPoint(P[i], (wk / "points")[i]));
+    const json& T = R[k]["tag"];
+    requireType(T, T.is_number_integer() && T.get<long long>() >= 1 && T.get<long long>() <= 1000000000, "integer >= 1",
+                wk / "tag");
+    r.tag = T.get<int>();
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 /// "slits": [{"points": [[x, y], ...], "tags": [left, right]}, ...] added to `d` in order
 /// (Domain::withSlit: attached where points[0] is on the boundary, else free).
 Domain applySlits(Domain d, const json& S, const Where& ws) {
@@ -459,7 +482,7 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
   const json j = parseJsonText(text, name);
   const Where top{name, ""};
   requireObject(j, top);
-  checkKeys(j, {"domain", "metric", "options", "outputs"}, top);
+  checkKeys(j, {"domain", "regions", "metric", "options", "outputs"}, top);
   ABLMG_REQUIRE(j.contains("domain"), name << ": domain: missing (required)");
   ABLMG_REQUIRE(j.contains("metric"), name << ": metric: missing (required)");
   Config c;
@@ -478,6 +501,7 @@ Config parseConfig(const std::string& text, const std::string& name, const std::
     c.outputs = {get("mesh"), get("vtu"), get("png"), get("report")};
   }
   c.domain = parseDomain(j["domain"], top / "domain", baseDir);
+  if (j.contains("regions")) c.regions = parseRegions(j["regions"], top / "regions");
   c.metric = parseMetric(j["metric"], top / "metric", baseDir, c.metricDescription);
   return c;
 }

@@ -22,6 +22,7 @@
 /// fields keep their defaults. Relative paths (poly, mesh, sol, outputs) are relative to the
 /// config file's directory. Unknown keys, wrong types and bad values are ablmg::InputError
 /// naming the file and key path: "config.json: metric.h1: expected string, got number".
+#include "ablmg/adapt/remesh.hpp"
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"
 #include "ablmg/mesher/mesher.hpp"
@@ -39,6 +40,9 @@ struct ConfigOutputs {
 
 struct Config {
   Domain domain;
+  /// "regions": [{"points": [[x, y], ...], "tag": T}, ...]: tagged polygons inside the domain,
+  /// meshed as subdomains (adapt::meshDomainWithRegions; the rest of the domain has ref 0).
+  std::vector<adapt::TaggedRegion> regions;
   std::unique_ptr<MetricField> metric;
   std::string metricDescription;  ///< one line, e.g. "analytic sizes h1=0.1 h2=0.1 theta=0"
   mesher::MeshOptions options;

@@ -321,3 +321,44 @@ TEST(RemeshSubdomains, TheLoopsOverloadKeepsSubdomains) {
   expectRefsWhereTheyWere(in, r.mesh);
   EXPECT_EQ(r.metric.size(), r.mesh.vertices.size());
 }
+
+// meshDomainWithRegions: tagged polygons inside a domain with a hole, meshed as subdomains.
+TEST(RemeshSubdomains, TaggedRegionsOfADomainAreMeshedAsSubdomains) {
+  BoundaryLoop outer, hole;
+  outer.points = {Vec2(0, 0), Vec2(2, 0), Vec2(2, 1), Vec2(0, 1)};
+  hole.points = {Vec2(1.0, 0.4), Vec2(1.1, 0.4), Vec2(1.1, 0.6), Vec2(1.0, 0.6)};
+  const Domain domain(outer, {hole});
+  const std::vector<TaggedRegion> regions = {{{Vec2(0.2, 0.2), Vec2(0.8, 0.2), Vec2(0.8, 0.8), Vec2(0.2, 0.8)}, 2},
+                                             {{Vec2(0.3, 0.3), Vec2(0.5, 0.3), Vec2(0.5, 0.5)}, 4},  // nested in 2
+                                             {{Vec2(1.2, 0.3), Vec2(1.8, 0.3), Vec2(1.5, 0.8)}, 3}};
+  struct Graded final : MetricField {
+    Metric2 at(const Vec2& p) const override { return Metric2::isotropic(0.02 + 0.04 * p.x()); }
+  } field;
+  const mesher::MeshResult r =
+      meshDomainWithRegions(domain, regions, field, mesher::meshPreset(mesher::MeshPreset::Mesh));
+  ASSERT_TRUE(r.mesh.validate(2 - 0.02, 1e-12).ok) << r.mesh.validate().firstProblem;
+  const auto a = areaByRef(r.mesh);
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_NEAR(a.at(4), 0.02, 1e-13);
+  EXPECT_NEAR(a.at(2), 0.36 - 0.02, 1e-13);
+  EXPECT_NEAR(a.at(3), 0.15, 1e-13);
+  EXPECT_NEAR(a.at(0), 2 - 0.02 - 0.36 - 0.15, 1e-12);
+  std::map<int, double> interfaceLength;
+  for (const auto& e : r.mesh.interfaceEdges)
+    interfaceLength[e.ref] += (r.mesh.vertices[std::size_t(e.b)] - r.mesh.vertices[std::size_t(e.a)]).norm();
+  EXPECT_NEAR(interfaceLength[2], 2.4, 1e-12);
+  EXPECT_NEAR(interfaceLength[4], 0.4 + 0.2 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(interfaceLength[3], 0.6 + 2 * std::hypot(0.3, 0.5), 1e-12);
+  EXPECT_GT(r.mesh.numVertices(), 1000);
+  // bad regions: a tag of 0, a point outside, two that cross
+  const auto options = mesher::meshPreset(mesher::MeshPreset::Mesh);
+  EXPECT_THROW((void)meshDomainWithRegions(domain, {{regions[2].points, 0}}, field, options), InputError);
+  EXPECT_THROW(
+      (void)meshDomainWithRegions(domain, {{{Vec2(0.5, 0.5), Vec2(2.5, 0.5), Vec2(0.5, 0.9)}, 2}}, field, options),
+      InputError);
+  try {
+    (void)meshDomainWithRegions(domain, {regions[0], {{Vec2(0.5, 0.5), Vec2(0.9, 0.5), Vec2(0.9, 0.9)}, 5}}, field,
+                                options, "cfg.json");
+    ADD_FAILURE() << "crossing regions accepted";
+  } catch (const InputError& e) { EXPECT_NE(std::string(e.what()).find("cross"), std::string::npos) << e.what(); }
+}

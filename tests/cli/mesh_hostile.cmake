@@ -139,6 +139,16 @@ ablmg_cli_failure(hostile_boundary_corner_on_no_edge "bo_corner.mesh: corner 7 i
 file(WRITE ${_hdir}/bo_good.mesh "${_two_sq}Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nEnd\n")
 add_test(NAME cli.remesh_boundary_only COMMAND ablmg remesh -in ${_hdir}/bo_good.mesh -hsiz 0.2 -out ${_hdir}/bo_good.o.mesh)
 set_tests_properties(cli.remesh_boundary_only PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "8 -> [0-9]+ vertices")
+# Tagged regions in an `ablmg mesh` config: a tag of 0, a region leaving the domain, two that cross.
+ablmg_hostile_config(region_tag0 "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"regions\": [{\"points\": [[0.2,0.2],[0.8,0.2],[0.5,0.8]], \"tag\": 0}], \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(config_region_tag0 "region_tag0.json: regions\\[0\\].tag: expected integer >= 1"
+                  mesh ${_hdir}/region_tag0.json -o ${_hdir}/region_tag0.mesh)
+ablmg_hostile_config(region_outside "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"regions\": [{\"points\": [[0.2,0.2],[1.8,0.2],[0.5,0.8]], \"tag\": 2}], \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(config_region_outside "region_outside.json: regions\\[0\\]: point 1 \\(1.8, 0.2\\) is not inside the domain"
+                  mesh ${_hdir}/region_outside.json -o ${_hdir}/region_outside.mesh)
+ablmg_hostile_config(region_cross "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"regions\": [{\"points\": [[0.2,0.2],[0.6,0.2],[0.4,0.6]], \"tag\": 2}, {\"points\": [[0.4,0.1],[0.8,0.1],[0.6,0.5]], \"tag\": 3}], \"metric\": {\"h\": \"0.1\"}}")
+ablmg_cli_failure(config_regions_cross "region_cross.json: edges \\([0-9]+, [0-9]+\\) and \\([0-9]+, [0-9]+\\) cross"
+                  mesh ${_hdir}/region_cross.json -o ${_hdir}/region_cross.mesh)
 ablmg_cli_failure(hostile_bad_met_field "-met-field" remesh -in ${_hdir}/req_inside.mesh -met-field 0 -out ${_hdir}/x.o.mesh)
 ablmg_hostile_config(bad_preset "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"preset\": \"fast\"}}")
 ablmg_cli_failure(config_bad_preset "bad_preset.json: options.preset: .*expected mesh, remesh or adapt, got 'fast'"
