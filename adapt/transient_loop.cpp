@@ -48,7 +48,7 @@ IntervalSolve solveInterval(const Mesh2& mesh, const fem::TransientProblem& prob
   if (hessians) addHessians(start.u);
   for (int j = 1; j <= steps; ++j) {
     solver.step(dt);
-    if (hessians) addHessians(solver.u());
+    if (hessians && (j % o.hessianEvery == 0 || j == steps)) addHessians(solver.u());
     if (errors) {
       const auto e = fem::computeErrors(mesh, solver.u(), problem.exactAt(solver.time()), o.errorDegree);
       r.steps.push_back({firstStep + j, solver.time(), mesh.numVertices(), e.l2, e.h1});
@@ -149,6 +149,7 @@ void validate(const TransientOptions& o, double tStart) {
                 "transient options: the final time " << o.tEnd << " must be after the start time " << tStart);
   ABLMG_REQUIRE(std::isfinite(o.vertices) && o.vertices >= 10,
                 "transient options: vertices must be >= 10 (got " << o.vertices << ")");
+  ABLMG_REQUIRE(o.hessianEvery >= 1, "transient options: hessianEvery must be >= 1 (got " << o.hessianEvery << ")");
   ABLMG_REQUIRE(o.fixedPointIterations >= 1 && o.fixedPointIterations <= 20,
                 "transient options: fixedPointIterations must be in 1..20 (got " << o.fixedPointIterations << ")");
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,

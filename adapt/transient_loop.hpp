@@ -14,8 +14,9 @@
 ///              candidate = mesh_i;
 ///              repeat fixedPointIterations times:
 ///                solve the interval on the candidate from S_i (transferred),
-///                H_max = ∩_j |H(u(t_j))| over the interval's sub-steps j = 0…k (metric
-///                        intersection of the recovered Hessians, vertex-wise on the candidate),
+///                H_max = ∩_j |H(u(t_j))| over the interval's sub-steps j = 0, s, 2s, …, k
+///                        (s = hessianEvery; metric intersection of the recovered Hessians,
+///                        vertex-wise on the candidate),
 ///                candidate = remesh(metricFromRecovered(H_max, N));
 ///              the metric thus covers the feature over the whole interval, not only at t_i;
 ///   metric = Current: the metric of u(t_i) alone (one remesh, no interval solve): the
@@ -25,9 +26,10 @@
 /// The target N is the vertex count of every mesh (metricFromRecovered: complexity (√3/2) N
 /// after the hmin/hmax bounds); the intersection is of the un-normalised Hessians, so the
 /// metric of an interval has the same complexity as one of a single time.
-/// Defaults k = 10, one fixed-point pass: on the moving peak at N = 4000 (docs/benchmarks.md,
-/// "Time-dependent adaptation") k = 5 with two passes had a 5 % smaller space-time error for 3.6×
-/// the CPU time (the remeshes dominate).
+/// Defaults k = 20 (a remesh every 0.02 time units at the problems' dt 0.001: the feature moves
+/// about half its width per interval), one fixed-point pass: at dt 0.002 and N = 4000, k = 5
+/// with two passes had a 5 % smaller space-time error than k = 10 with one for 3.6× the CPU
+/// time on the moving peak (the remeshes dominate), and a second pass did not help the front.
 /// uniform = true: one isotropic mesh of N vertices (adapt::uniformMesh), never remeshed: the
 /// comparison run. The initial state is the nodal interpolant of the exact u(t0) on the mesh
 /// the first interval is solved on.
@@ -58,9 +60,13 @@ std::string toString(TransientMetric m);
 struct TransientOptions {
   double dt = 0;                                           ///< > 0; 0 = the problem's
   double tEnd = std::numeric_limits<double>::quiet_NaN();  ///< > the problem's tStart; NaN = the problem's
-  int remeshEvery = 10;                                    ///< k ≥ 1 steps per interval
+  int remeshEvery = 20;                                    ///< k ≥ 1 steps per interval
   double vertices = 4000;                                  ///< N, vertices of every mesh (≥ 10)
   int fixedPointIterations = 1;                            ///< ≥ 1 (Interval metric)
+  /// The Interval metric intersects the Hessians of the sub-steps j = 0, s, 2s, … and the
+  /// interval's last step (s ≥ 1). Each recovery costs about as much as a time step's solve;
+  /// at s = 2 a feature moves 0.05–0.07 of its width between samples on the library's problems.
+  int hessianEvery = 2;
   TransientMetric metric = TransientMetric::Interval;
   bool uniform = false;  ///< fixed uniform mesh of N vertices
   fem::TimeScheme scheme = fem::TimeScheme::BDF2;

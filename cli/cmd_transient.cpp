@@ -45,16 +45,18 @@ struct Args {
 
 constexpr const char* kUsage =
     "usage: ablmg transient --problem NAME [--param KEY=VALUE ...] [--dt DT] [--t-end T] [--remesh-every K]\n"
-    "                       [--vertices N] [--fixed-point-iterations F] [--metric interval|current] [--uniform]\n"
+    "                       [--vertices N] [--fixed-point-iterations F] [--hessian-every S]\n"
+    "                       [--metric interval|current] [--uniform]\n"
     "                       [--scheme bdf2|euler] [--transfer projection|interpolation] [--bound-preserving on|off]\n"
     "                       [--hgrad B] [--p P] [--hessian lsq|double] [--seed S] [--frames on|off]\n"
     "                       [--label NAME] [--plot-with LABEL=DIR ...] [--out-dir DIR]\n"
     "  The heat equation u_t - kappa Laplace(u) = f on a mesh that follows the solution: every K steps\n"
-    "  (default 10) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
-    "  sub-steps, F fixed-point passes, default 1), a remesh to N vertices (default 4000), the state\n"
-    "  transferred (conservative L2 projection), and on. --uniform: one uniform mesh of N vertices.\n"
+    "  (default 20) a metric covering the next interval (the intersection of the Hessian metrics of its\n"
+    "  sub-steps, every S-th and the last, default 2; F fixed-point passes, default 1), a remesh to N\n"
+    "  vertices (default 4000), the state transferred (conservative L2 projection), and on.\n"
+    "  --uniform: one uniform mesh of N vertices.\n"
     "  --metric current: the metric of the current solution only. Problems: movingpeak, front\n"
-    "  (their default dt and final time: 0.002, 0.5 / 0.6). Outputs: see cli/cmd_transient.cpp.\n";
+    "  (their default dt and final time: 0.001, 0.5 / 0.6). Outputs: see cli/cmd_transient.cpp.\n";
 
 void parseOption(Args& a, const std::string& key, const std::function<const std::string&()>& value) {
   auto& o = a.options;
@@ -76,6 +78,8 @@ void parseOption(Args& a, const std::string& key, const std::function<const std:
     o.vertices = parseNumber(value(), "transient: --vertices");
   } else if (key == "--fixed-point-iterations") {
     o.fixedPointIterations = int(parseInteger(value(), "transient: --fixed-point-iterations", 1, 20));
+  } else if (key == "--hessian-every") {
+    o.hessianEvery = int(parseInteger(value(), "transient: --hessian-every", 1, 1000000));
   } else if (key == "--metric") {
     o.metric = adapt::parseTransientMetric(value());
   } else if (key == "--uniform") {
@@ -106,11 +110,13 @@ void parseOption(Args& a, const std::string& key, const std::function<const std:
   } else if (key == "--out-dir") {
     a.outDir = value();
   } else {
-    ABLMG_REQUIRE(false, "transient: unknown argument '"
-                             << key
-                             << "' (valid: --problem --param --dt --t-end --remesh-every --vertices "
-                                "--fixed-point-iterations --metric --uniform --scheme --transfer --bound-preserving "
-                                "--hgrad --p --hessian --seed --frames --label --plot-with --out-dir)");
+    ABLMG_REQUIRE(
+        false,
+        "transient: unknown argument '"
+            << key
+            << "' (valid: --problem --param --dt --t-end --remesh-every --vertices "
+               "--fixed-point-iterations --hessian-every --metric --uniform --scheme --transfer --bound-preserving "
+               "--hgrad --p --hessian --seed --frames --label --plot-with --out-dir)");
   }
 }
 
@@ -205,6 +211,7 @@ void writeTables(const Args& a, const fem::TransientProblem& p, const adapt::Tra
                   {"remesh_every", o.remeshEvery},
                   {"vertices", o.vertices},
                   {"fixed_point_iterations", o.fixedPointIterations},
+                  {"hessian_every", o.hessianEvery},
                   {"metric", adapt::toString(o.metric)},
                   {"uniform", o.uniform},
                   {"scheme", fem::toString(o.scheme)},

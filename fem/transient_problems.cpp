@@ -43,7 +43,7 @@ TransientProblem movingPeak(const std::map<std::string, double>& given) {
   p.kappa = k;
   p.tStart = 0;
   p.tEnd = 0.5;
-  p.dt = 0.002;
+  p.dt = 0.001;
   p.u = [=](double x, double y, double t) {
     const double dx = x - xc - r * std::cos(w * t), dy = y - yc - r * std::sin(w * t);
     return std::exp(-a * (dx * dx + dy * dy));
@@ -78,7 +78,7 @@ TransientProblem front(const std::map<std::string, double>& given) {
   p.kappa = k;
   p.tStart = 0;
   p.tEnd = 0.6;
-  p.dt = 0.002;
+  p.dt = 0.001;
   p.u = [=](double x, double y, double t) { return std::tanh((nx * x + ny * y - v * t - c) / e); };
   p.grad = [=](double x, double y, double t) -> Vec2 {
     const double th2 = std::tanh((nx * x + ny * y - v * t - c) / e), s2 = 1 - th2 * th2;

@@ -97,6 +97,9 @@ TEST(TransientLoop, BadOptionsAreInputErrorsNamingTheOption) {
   o.dt = -0.1;
   EXPECT_NE(message(o).find("dt must be > 0"), std::string::npos) << message(o);
   o = smallOptions();
+  o.hessianEvery = 0;
+  EXPECT_NE(message(o).find("hessianEvery must be >= 1"), std::string::npos) << message(o);
+  o = smallOptions();
   o.tEnd = -1;
   EXPECT_NE(message(o).find("must be after the start time"), std::string::npos) << message(o);
 }

@@ -90,6 +90,7 @@ foreach(
   "unknown_problem|--problem wave|unknown transient problem 'wave' \\(valid: movingpeak, front\\)"
   "unknown_param|--problem movingpeak --param beta=2|unknown parameter 'beta'"
   "bad_vertices|--problem movingpeak --vertices 3|vertices must be >= 10 \\(got 3\\)"
+  "bad_hessian_every|--problem movingpeak --hessian-every 0|--hessian-every: expected an integer in \\[1, 1000000\\], got '0'"
   "bad_fixed_point|--problem movingpeak --fixed-point-iterations 0|--fixed-point-iterations: expected an integer in \\[1, 20\\]"
   "bad_metric|--problem movingpeak --metric future|unknown transient metric 'future'"
   "bad_scheme|--problem movingpeak --scheme rk4|unknown time scheme 'rk4'"
