@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 
 namespace ablmg::adapt {
 namespace {
@@ -138,6 +139,16 @@ mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<M
   RemeshResult r;  // the subdomains and interfaces are the mesh's: remeshed from it
   remeshSubdomains(field.mesh(), field, options, "mesh", r);
   return {std::move(r.mesh), std::move(r.metric), r.stats};
+}
+
+void requireBoundaryEdges(Mesh2& mesh) {
+  std::set<std::array<int, 2>> have;
+  for (const auto& e : mesh.requiredEdges) have.insert({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  const auto add = [&](const BoundaryEdge& e) {
+    if (have.insert({std::min(e.a, e.b), std::max(e.a, e.b)}).second) mesh.requiredEdges.push_back({e.a, e.b});
+  };
+  for (const auto& e : mesh.boundaryEdges) add(e);
+  for (const auto& e : mesh.interfaceEdges) add(e);
 }
 
 }  // namespace ablmg::adapt

@@ -128,6 +128,11 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 /// then lie in different pieces and keep distinct vertices, the tip stays a vertex, and the
 /// cut is glued and dropped (no interface edge remains on it).
 bool needsSubdomains(const Mesh2& mesh);
+/// MMG's -nosurf: adds every boundary and interface edge of `mesh` to mesh.requiredEdges
+/// (each pair listed once), so that remesh() keeps the boundary and the interfaces as they are
+/// (their vertices at their coordinates, their edges unsplit, their refs) and meshes only the
+/// inside. On an edges-only mesh it makes every loop edge required.
+void requireBoundaryEdges(Mesh2& mesh);
 /// The subdomain path of remesh(): `mesh` valid, `field` its background field; fills out.mesh,
 /// out.metric, out.stats (counts summed over the subdomains). Throws InputError naming `name`
 /// for a required vertex inside a subdomain or a subdomain that is no valid Domain.

@@ -63,8 +63,12 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --metric-quantum Q  snap the metric to a grid of step Q first (0 = off, the default; e.g.
                    0.00390625 = 2^-8): metrics differing by round-off give the same mesh
                    (adapt/metric_snap.hpp)
-  --print-options  print the options in effect (JSON: these flags and the mesher's, the
+  --print-options, -val
+                   print the options in effect (JSON: these flags and the mesher's, the
                    "remesh" preset) and exit; -in is then not needed
+  -nosurf          keep the boundary and the interfaces as they are: every boundary and
+                   interface edge of IN.mesh becomes a required edge (kept as one edge, its
+                   vertices kept), so only the inside is remeshed, as MMG's -nosurf
   --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
                    the same statistics, the same for the same N
   --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
@@ -122,7 +126,7 @@ int runRemesh(const std::vector<std::string>& args) {
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0, metricQuantum = 0;
   adapt::InteriorLoops interiorLoops = adapt::InteriorLoops::Holes;
   int verbose = 1, metField = 0;
-  bool printOptions = false;
+  bool printOptions = false, noSurf = false;
   long long seed = 0;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
@@ -167,8 +171,10 @@ int runRemesh(const std::vector<std::string>& args) {
                                : adapt::RemeshOptions::WarmStart::IfFits;
     } else if (a == "--report")
       reportPath = value();
-    else if (a == "--print-options")
+    else if (a == "--print-options" || a == "-val")
       printOptions = true;
+    else if (a == "-nosurf")
+      noSurf = true;
     else if (a == "--interior-loops") {
       const std::string v = value();
       ABLMG_REQUIRE(v == "holes" || v == "subdomains",
@@ -224,6 +230,7 @@ int runRemesh(const std::vector<std::string>& args) {
                 {"metricQuantum", metricQuantum},
                 {"interiorLoops", options.interiorLoops == adapt::InteriorLoops::Holes ? "holes" : "subdomains"},
                 {"options", meshOptionsToJson(options.mesh)},
+                {"nosurf", noSurf},
                 {"report", reportPath}};
     if (printOptions) {
       nlohmann::json own = resolved;
@@ -243,6 +250,7 @@ int runRemesh(const std::vector<std::string>& args) {
   auto inputs = readInputs(in, sol, metField, verbose, hsiz);
   const double secondsRead = watch.seconds();
   const int inVertices = inputs.first.numVertices();
+  if (noSurf) adapt::requireBoundaryEdges(inputs.first);
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);

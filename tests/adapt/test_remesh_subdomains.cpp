@@ -19,6 +19,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 using namespace ablmg;
 using namespace ablmg::adapt;
@@ -199,6 +200,33 @@ TEST(RemeshSubdomains, GmshThreeSurfacesWithPhysicalTags) {
     for (const Vec2& v : r.mesh.vertices) found = found || (v - p).norm() < 1e-12;
     EXPECT_TRUE(found) << p.transpose();
   }
+}
+
+// MMG's -nosurf (requireBoundaryEdges): the remesh keeps every boundary and interface edge of
+// the input, by coordinates and ref, and adds none, while the inside is meshed to the finer size.
+TEST(RemeshSubdomains, RequiredBoundaryEdgesKeepTheBoundaryExactly) {
+  Mesh2 in = io::readMesh(kData + "/gmsh_disk_three.mesh");
+  requireBoundaryEdges(in);
+  ASSERT_EQ(in.requiredEdges.size(), in.boundaryEdges.size() + in.interfaceEdges.size());
+  requireBoundaryEdges(in);  // listed once
+  ASSERT_EQ(in.requiredEdges.size(), in.boundaryEdges.size() + in.interfaceEdges.size());
+  using Key = std::tuple<double, double, double, double, int>;
+  const auto keys = [](const Mesh2& m, const std::vector<BoundaryEdge>& edges) {
+    std::set<Key> k;
+    for (const auto& e : edges) {
+      Vec2 p = m.vertices[std::size_t(e.a)], q = m.vertices[std::size_t(e.b)];
+      if (std::tie(q.x(), q.y()) < std::tie(p.x(), p.y())) std::swap(p, q);
+      k.insert({p.x(), p.y(), q.x(), q.y(), e.ref});
+    }
+    return k;
+  };
+  const RemeshResult r = remesh(in, sizes(in, 0.05));
+  ASSERT_TRUE(r.mesh.validate().ok) << r.mesh.validate().firstProblem;
+  EXPECT_GT(r.mesh.numVertices(), 2 * in.numVertices());
+  EXPECT_EQ(keys(r.mesh, r.mesh.boundaryEdges), keys(in, in.boundaryEdges));
+  EXPECT_EQ(keys(r.mesh, r.mesh.interfaceEdges), keys(in, in.interfaceEdges));
+  const auto a0 = areaByRef(in), a1 = areaByRef(r.mesh);
+  for (const auto& [ref, a] : a0) EXPECT_NEAR(a1.at(ref), a, 1e-12) << "subdomain " << ref;
 }
 
 // A curved interface in a square (ff_inclusion) and a curved outer boundary with a curved

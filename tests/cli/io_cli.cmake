@@ -98,3 +98,15 @@ file(WRITE ${_out}/crossing_interfaces.mesh "MeshVersionFormatted 2\nDimension 2
                                             "Triangles\n2\n1 2 3 1\n1 3 4 1\nEdges\n2\n1 3 5\n2 4 6\nEnd\n")
 ablmg_cli_failure(remesh_crossing_interfaces "crossing_interfaces.mesh: edge \\(2, 4\\) of Edges is a side of no triangle"
                   remesh -in ${_out}/crossing_interfaces.mesh -hsiz 0.2 -out ${_out}/remesh_crossing_interfaces.mesh)
+# MMG's -val prints the options in effect and exits without reading -in (none here, or a
+# missing file); -nosurf keeps the boundary and interface edges as required edges.
+add_test(NAME cli.remesh_val COMMAND ablmg remesh -val -hsiz 0.3)
+set_tests_properties(cli.remesh_val PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "\"command\": \"remesh\".*\"hsiz\": 0.3")
+add_test(NAME cli.remesh_val_reads_nothing COMMAND ablmg remesh -in ${_data}/no_such.mesh -val)
+set_tests_properties(cli.remesh_val_reads_nothing PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "\"in\": \"[^\"]*no_such.mesh\""
+                     FAIL_REGULAR_EXPRESSION "cannot open")
+add_test(NAME cli.remesh_nosurf COMMAND ablmg remesh -in ${_data}/gmsh_disk_three.mesh -hsiz 0.05 -nosurf
+                                        -out ${_out}/remesh_nosurf.mesh)
+set_tests_properties(cli.remesh_nosurf PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "\"nosurf\":true.*426 -> [0-9]+ vertices")
+ablmg_cli_failure(remesh_nosurf_without_input "missing -in IN.mesh" remesh -nosurf -hsiz 0.1)
