@@ -60,9 +60,9 @@ const Polygon& clipHalfPlane(const Polygon& in, const Vec2& a, const Vec2& b, in
                              Polygon& out) {
   std::array<int, 9> side;
   std::array<double, 9> det;
+  const std::size_t n = std::size_t(in.n);  // locals, not the polygons' members: no reloads per push
   bool anyOut = false;
-  for (int i = 0; i < in.n; ++i) {
-    const std::size_t k = std::size_t(i);
+  for (std::size_t k = 0; k < n; ++k) {
     const int c = in.corner[k];
     if (c >= 0) {
       side[k] = cs[std::size_t(c)]->side[std::size_t(line)];
@@ -73,22 +73,28 @@ const Polygon& clipHalfPlane(const Polygon& in, const Vec2& a, const Vec2& b, in
     anyOut |= side[k] < 0;
   }
   if (!anyOut) return in;
-  out.n = 0;
-  for (int i = 0; i < in.n; ++i) {
-    const std::size_t k = std::size_t(i), l = i + 1 == in.n ? 0 : k + 1;
+  std::size_t m = 0;
+  const auto push = [&](const Vec2& q, int label, int corner) {
+    out.p[m] = q;
+    out.label[m] = label;
+    out.corner[m++] = corner;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t l = k + 1 == n ? 0 : k + 1;
     const auto crossing = [&] {
       const double t = std::clamp(det[k] / (det[k] - det[l]), 0.0, 1.0);
       return Vec2(in.p[k] + t * (in.p[l] - in.p[k]));
     };
     if (side[k] > 0 && side[l] < 0) {
-      out.push(in.p[k], in.label[k], in.corner[k]);
-      out.push(crossing(), -1, -1);  // exit: the next output (the entry) is along the line
+      push(in.p[k], in.label[k], in.corner[k]);
+      push(crossing(), -1, -1);  // exit: the next output (the entry) is along the line
     } else if (side[k] >= 0) {
-      out.push(in.p[k], side[k] == 0 && side[l] < 0 ? -1 : in.label[k], in.corner[k]);
+      push(in.p[k], side[k] == 0 && side[l] < 0 ? -1 : in.label[k], in.corner[k]);
     } else if (side[l] > 0) {
-      out.push(crossing(), in.label[k], -1);  // entry
+      push(crossing(), in.label[k], -1);  // entry
     }
   }
+  out.n = int(m);
   return out;
 }
 
@@ -503,6 +509,18 @@ std::vector<Eigen::VectorXd> projectFields(const Mesh2& oldMesh, const Mesh2& ne
   return out;
 }
 
+/// ∫u and ∫|u| of a P1 field in one pass (the same sums as integrate(mesh, u) and
+/// integrate(mesh, |u|)).
+std::pair<double, double> integrateWithAbs(const Mesh2& mesh, const Eigen::VectorXd& u) {
+  double s = 0, a = 0;
+  for (const auto& tr : mesh.triangles) {
+    const double w = 0.5 * signedArea2(mesh.vertices[tr[0]], mesh.vertices[tr[1]], mesh.vertices[tr[2]]) / 3;
+    s += w * (u[tr[0]] + u[tr[1]] + u[tr[2]]);
+    a += w * (std::abs(u[tr[0]]) + std::abs(u[tr[1]]) + std::abs(u[tr[2]]));
+  }
+  return {s, a};
+}
+
 }  // namespace
 
 TransferMethod parseTransferMethod(const std::string& name) {
@@ -531,7 +549,8 @@ double integrate(const Mesh2& mesh, const Eigen::VectorXd& u) {
   double s = 0;
   for (int t = 0; t < mesh.numTriangles(); ++t) {
     const auto& tr = mesh.triangles[std::size_t(t)];
-    s += mesh.triangleArea(t) / 3 * (u[tr[0]] + u[tr[1]] + u[tr[2]]);
+    s += 0.5 * signedArea2(mesh.vertices[tr[0]], mesh.vertices[tr[1]], mesh.vertices[tr[2]]) / 3 *
+         (u[tr[0]] + u[tr[1]] + u[tr[2]]);
   }
   return s;
 }
@@ -547,8 +566,9 @@ std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& n
                                          ? interpolateFields(oldMesh, newMesh, fields, stats)
                                          : projectFields(oldMesh, newMesh, fields, options, stats);
   for (std::size_t f = 0; f < fields.size(); ++f) {
-    stats.massOld.push_back(integrate(oldMesh, fields[f]));
-    stats.absMassOld.push_back(integrate(oldMesh, fields[f].cwiseAbs()));
+    const auto [mass, absMass] = integrateWithAbs(oldMesh, fields[f]);
+    stats.massOld.push_back(mass);
+    stats.absMassOld.push_back(absMass);
     stats.massNew.push_back(integrate(newMesh, out[f]));
   }
   stats.seconds = watch.seconds();
