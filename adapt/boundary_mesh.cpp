@@ -178,7 +178,13 @@ BoundaryTriangulation triangulateBoundary(const Mesh2& boundary, const std::stri
     ABLMG_REQUIRE(signedArea(L, L.vertices[l]) != 0, name << ": the loop through vertex "
                                                           << L.inputVertex[std::size_t(L.vertices[l][0])] + 1
                                                           << " has zero area");
-  mesher::Triangulation tri(L.points);
+  mesher::Triangulation tri = [&] {
+    try {
+      return mesher::Triangulation(L.points);
+    } catch (const InputError& e) {  // coincident loop vertices
+      throw InputError(name + ": " + e.what());
+    }
+  }();
   for (const auto& loop : L.vertices)
     for (std::size_t k = 0; k < loop.size(); ++k) {
       const int a = loop[k], b = loop[(k + 1) % loop.size()];

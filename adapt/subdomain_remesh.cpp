@@ -325,6 +325,10 @@ bool needsSubdomains(const Mesh2& mesh) {
 
 void remeshSubdomains(const Mesh2& input, const MetricField& field, const mesher::MeshOptions& options,
                       const std::string& name, RemeshResult& out) {
+  for (const auto* edges : {&input.boundaryEdges, &input.interfaceEdges})
+    for (const auto& e : *edges)
+      ABLMG_REQUIRE(e.ref != kCutRef, name << ": edge (" << e.a + 1 << ", " << e.b + 1 << ") has ref " << e.ref
+                                           << ", which is reserved (the remesher's cuts at slit tips)");
   Mesh2 cutMesh;
   const std::vector<char> lip = lipVertices(input);
   const bool slits = std::find(lip.begin(), lip.end(), 1) != lip.end();

@@ -8,8 +8,8 @@
 /// on this 2-core machine, uniform mesh, 10⁶ unknowns, OpenBLAS: ≈ 0.5 s ordering + 3 s
 /// factorisation, against ≈ 7 s + 2.8 s with CHOLMOD's METIS and 0.6 s + 4.1 s with AMD.
 /// Its cuts are chosen by separator size in the graph, so the flops follow N and not the
-/// grading (≈ 10⁵ unknowns: 0.60, 0.89 and 0.13 GFlop on the uniform, wave-front and tanh-layer
-/// meshes, where the longer-axis rule took 0.57, 1.30 and 56; bench/bench_solve_graded.cpp).
+/// grading (≈ 10⁵ unknowns: 0.58, 0.97 and 0.05 GFlop on the uniform, wave-front and tanh-layer
+/// meshes, where the longer-axis rule took 0.57, 1.69 and 504; bench/bench_solve_graded.cpp).
 /// (CHOLMOD's supernodal kernels need an optimised BLAS: with Debian's reference BLAS the
 /// factorisation is ≈ 4× slower. Install libopenblas0-pthread.)
 ///

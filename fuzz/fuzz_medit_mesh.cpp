@@ -2,8 +2,11 @@
 // give an InputError or a mesh; a parsed mesh is then validated (validate() never throws), and a
 // valid one goes on as `ablmg remesh` takes it: its boundary becomes a Domain (InputError or a
 // domain of positive area) and points are located in it (a triangle of the mesh, barycentric
-// weights summing to 1). Every InputError names the file ("fuzz:<line>: ...", the header's
+// weights summing to 1), and split into subdomains (InputError or at least one); a file of edges
+// without triangles is triangulated inside its loops (boundary_mesh.hpp: InputError or a valid
+// mesh, with holes or interfaces). Every InputError names the file ("fuzz:<line>: ...", the header's
 // promise). Anything else (crash, sanitizer report, other exception) is a finding.
+#include "ablmg/adapt/boundary_mesh.hpp"
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/point_locator.hpp"
@@ -36,11 +39,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     requireNamesFile(e);
     return 0;
   }
+  if (mesh.triangles.empty() && !mesh.boundaryEdges.empty() && mesh.boundaryEdges.size() <= 2000) {
+    // a boundary discretization: its first mesh is valid, or an InputError naming the file
+    for (auto mode : {ablmg::adapt::InteriorLoops::Holes, ablmg::adapt::InteriorLoops::Subdomains}) {
+      try {
+        const auto t = ablmg::adapt::triangulateBoundary(mesh, "fuzz", mode);
+        if (!t.mesh.validate().ok || t.inputVertex.size() != t.mesh.vertices.size()) __builtin_trap();
+      } catch (const ablmg::InputError& e) { requireNamesFile(e); }
+    }
+    return 0;
+  }
   const ablmg::MeshValidation v = mesh.validate();
   if (!v.ok) return 0;
   try {
     const ablmg::Domain d = ablmg::domainFromMeshBoundary(mesh, "fuzz");
     if (!(d.area() > 0)) __builtin_trap();
+  } catch (const ablmg::InputError& e) { requireNamesFile(e); }
+  try {  // subdomains, interfaces and features (the sections remesh reads for them)
+    const ablmg::MeshSubdomains sub = ablmg::subdomainsFromMesh(mesh, "fuzz");
+    if (sub.regions.empty() || sub.junction.size() != mesh.vertices.size()) __builtin_trap();
   } catch (const ablmg::InputError& e) { requireNamesFile(e); }
   if (mesh.triangles.empty()) return 0;
   const ablmg::PointLocator locator(mesh);

@@ -258,6 +258,10 @@ PointKey keyOf(const Vec2& p) { return {std::bit_cast<std::uint64_t>(p.x()), std
 }  // namespace
 
 MeshResult meshSlitDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
+  for (std::size_t l = 0; l < domain.loops().size(); ++l)
+    for (int tag : domain.loops()[l].tags)
+      ABLMG_REQUIRE(tag != kSlitCutTag, "domain: loop " << l << " has tag " << tag
+                                                        << ", which is reserved (the cuts of a domain with slits)");
   const SlitPieces cut = cutAtSlits(domain, metric);
   std::map<PointKey, int> shared;  // cut points → output vertex (-1 until met)
   for (const auto& c : cut.cuts)

@@ -160,6 +160,47 @@ TEST(RemeshSubdomains, GmshAndFreeFemMultiRegionFiles) {
   }
 }
 
+// gmsh's medit output with physical tags (make_multiregion.sh): the unit disk as 4 x 16 chords
+// (ref 10) cut along y = 0 (ref 20) into halves 1 (upper) and 3, with the square
+// [-0.3, 0.3] x [0.2, 0.6] (ref 30) as subdomain 2 in the upper half. The square is a polygon:
+// its area is kept to round-off. The halves' outer boundary is the input's chords; the remesh
+// places its vertices on them, so each half loses at most the input's own chord error against
+// the exact half disk (the new chords, 2.5 times shorter, cut the input's corners only).
+TEST(RemeshSubdomains, GmshThreeSurfacesWithPhysicalTags) {
+  const io::MeshFile file = io::readMeshFile(kData + "/gmsh_disk_three.mesh");
+  const Mesh2& in = file.mesh;
+  ASSERT_TRUE(in.validate().ok) << in.validate().firstProblem;
+  const auto a0 = areaByRef(in);
+  ASSERT_EQ(a0.size(), 3u);
+  EXPECT_NEAR(a0.at(2), 0.24, 1e-12);
+  const double pi = std::acos(-1.0);
+  const std::map<int, double> chordError{{1, pi / 2 - 0.24 - a0.at(1)}, {3, pi / 2 - a0.at(3)}};
+  for (const auto& [ref, err] : chordError) ASSERT_GT(err, 0) << "subdomain " << ref;
+  const RemeshResult r = remesh(in, sizes(in, 0.04), RemeshOptions{.name = "gmsh_disk_three.mesh"});
+  ASSERT_TRUE(r.mesh.validate().ok) << r.mesh.validate().firstProblem;
+  EXPECT_GT(r.mesh.numVertices(), 2 * in.numVertices());
+  const auto a1 = areaByRef(r.mesh);
+  ASSERT_EQ(a1.size(), 3u);
+  EXPECT_NEAR(a1.at(2), a0.at(2), 1e-12);
+  for (const auto& [ref, err] : chordError) {
+    EXPECT_LE(a1.at(ref), a0.at(ref) + 1e-12) << "subdomain " << ref;  // inside the input's chords
+    EXPECT_LE(a0.at(ref) - a1.at(ref), err) << "subdomain " << ref;
+  }
+  expectInterfacesCovered(in, r.mesh);
+  expectRefsWhereTheyWere(in, r.mesh);
+  std::set<int> interfaceRefs, boundaryRefs;
+  for (const auto& e : r.mesh.interfaceEdges) interfaceRefs.insert(e.ref);
+  for (const auto& e : r.mesh.boundaryEdges) boundaryRefs.insert(e.ref);
+  EXPECT_EQ(interfaceRefs, (std::set<int>{20, 30}));
+  EXPECT_EQ(boundaryRefs, (std::set<int>{10}));
+  // the junctions of the cut with the circle and the square's corners are output vertices
+  for (const Vec2 p : {Vec2(-1, 0), Vec2(1, 0), Vec2(-0.3, 0.2), Vec2(0.3, 0.2), Vec2(0.3, 0.6), Vec2(-0.3, 0.6)}) {
+    bool found = false;
+    for (const Vec2& v : r.mesh.vertices) found = found || (v - p).norm() < 1e-12;
+    EXPECT_TRUE(found) << p.transpose();
+  }
+}
+
 // A curved interface in a square (ff_inclusion) and a curved outer boundary with a curved
 // interface (ff_disk_inclusion, FreeFem++'s), each remeshed 10 times. The chord error of the
 // first remesh is measured per loop: the inclusion's (the interface) and the whole domain's

@@ -139,6 +139,16 @@ ablmg_cli_failure(hostile_boundary_corner_on_no_edge "bo_corner.mesh: corner 7 i
 file(WRITE ${_hdir}/bo_good.mesh "${_two_sq}Edges\n4\n1 2 1\n2 3 2\n3 4 3\n4 1 4\nEnd\n")
 add_test(NAME cli.remesh_boundary_only COMMAND ablmg remesh -in ${_hdir}/bo_good.mesh -hsiz 0.2 -out ${_hdir}/bo_good.o.mesh)
 set_tests_properties(cli.remesh_boundary_only PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "8 -> [0-9]+ vertices")
+# Bad refs in medit files: not an integer, out of int range, the remesher's reserved cut ref.
+file(WRITE ${_hdir}/ref_float.mesh "${_sq}${_edges}Triangles\n4\n1 2 5 1.5\n2 3 5 1\n3 4 5 1\n4 1 5 1\nEnd\n")
+ablmg_cli_failure(hostile_ref_not_integer "ref_float.mesh:[0-9]+: expected reference \\(an integer\\), got '1.5'"
+                  remesh -in ${_hdir}/ref_float.mesh -hsiz 0.2 -out ${_hdir}/ref_float.o.mesh)
+file(WRITE ${_hdir}/ref_huge.mesh "${_sq}Edges\n4\n1 2 1\n2 3 99999999999\n3 4 3\n4 1 4\n${_tri}End\n")
+ablmg_cli_failure(hostile_ref_out_of_range "ref_huge.mesh:[0-9]+: reference 99999999999 is out of range"
+                  remesh -in ${_hdir}/ref_huge.mesh -hsiz 0.2 -out ${_hdir}/ref_huge.o.mesh)
+file(WRITE ${_hdir}/ref_reserved.mesh "${_sq}Edges\n7\n1 2 1\n2 3 2\n3 4 3\n4 1 4\n1 5 -2147483647\n2 5 8\n4 5 8\nTriangles\n4\n1 2 5 1\n2 3 5 2\n3 4 5 2\n4 1 5 1\nEnd\n")
+ablmg_cli_failure(hostile_ref_reserved "ref_reserved.mesh: edge \\([0-9], [0-9]\\) has ref -2147483647, which is reserved"
+                  remesh -in ${_hdir}/ref_reserved.mesh -hsiz 0.2 -out ${_hdir}/ref_reserved.o.mesh)
 # Tagged regions in an `ablmg mesh` config: a tag of 0, a region leaving the domain, two that cross.
 ablmg_hostile_config(region_tag0 "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"regions\": [{\"points\": [[0.2,0.2],[0.8,0.2],[0.5,0.8]], \"tag\": 0}], \"metric\": {\"h\": \"0.1\"}}")
 ablmg_cli_failure(config_region_tag0 "region_tag0.json: regions\\[0\\].tag: expected integer >= 1"

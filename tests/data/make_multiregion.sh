@@ -7,6 +7,11 @@
 #   gmsh_two_regions.mesh  gmsh -2 -format mesh: [0,2]x[0,1] cut by a two-segment interface
 #                          into two surfaces; Dimension 3, z = 0; gmsh writes the elementary
 #                          entity tags as refs (curves 7 and 8 on the interface, surfaces 1 and 2)
+#   gmsh_disk_three.mesh   gmsh -2 -format mesh, physical tags as refs (Mesh.SaveElementTagType
+#                          2): the unit disk (four arcs, ref 10) cut along y = 0 (ref 20) into
+#                          an upper (1) and a lower (3) half, and the square [-0.3,0.3]x[0.2,0.6]
+#                          (ref 30) in the upper half as a third surface (2): three surfaces
+#                          sharing curves, a curved outer boundary, polygonal interfaces
 # Run from anywhere: sh tests/data/make_multiregion.sh (needs FreeFem++ and gmsh).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
@@ -45,4 +50,21 @@ Physical Curve(7) = {7, 8};
 Physical Surface(10) = {1}; Physical Surface(20) = {2};
 GEO
 gmsh -2 -format mesh "$tmp/two.geo" -o "$here/gmsh_two_regions.mesh" > /dev/null
-echo "wrote $here/ff_inclusion.mesh $here/ff_disk_inclusion.mesh $here/gmsh_two_regions.mesh"
+cat > "$tmp/disk_three.geo" <<'GEO'
+lc = 0.1;
+Point(1) = {0, 0, 0, lc};
+Point(2) = {1, 0, 0, lc}; Point(3) = {0, 1, 0, lc}; Point(4) = {-1, 0, 0, lc}; Point(5) = {0, -1, 0, lc};
+Point(6) = {-0.3, 0.2, 0, lc}; Point(7) = {0.3, 0.2, 0, lc}; Point(8) = {0.3, 0.6, 0, lc}; Point(9) = {-0.3, 0.6, 0, lc};
+Circle(1) = {2, 1, 3}; Circle(2) = {3, 1, 4}; Circle(3) = {4, 1, 5}; Circle(4) = {5, 1, 2};
+Line(5) = {4, 2};
+Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 9}; Line(9) = {9, 6};
+Curve Loop(1) = {1, 2, 5}; Curve Loop(2) = {6, 7, 8, 9}; Plane Surface(1) = {1, 2};
+Plane Surface(2) = {2};
+Curve Loop(3) = {3, 4, -5}; Plane Surface(3) = {3};
+Physical Curve(10) = {1, 2, 3, 4}; Physical Curve(20) = {5}; Physical Curve(30) = {6, 7, 8, 9};
+Physical Surface(1) = {1}; Physical Surface(2) = {2}; Physical Surface(3) = {3};
+GEO
+gmsh -2 -format mesh -setnumber Mesh.SaveElementTagType 2 "$tmp/disk_three.geo" \
+  -o "$here/gmsh_disk_three.mesh" > /dev/null
+echo "wrote $here/ff_inclusion.mesh $here/ff_disk_inclusion.mesh $here/gmsh_two_regions.mesh" \
+  "$here/gmsh_disk_three.mesh"
