@@ -60,9 +60,9 @@ const Polygon& clipHalfPlane(const Polygon& in, const Vec2& a, const Vec2& b, in
                              Polygon& out) {
   std::array<int, 9> side;
   std::array<double, 9> det;
+  const std::size_t n = std::size_t(in.n);  // locals, not the polygons' members: no reloads per push
   bool anyOut = false;
-  for (int i = 0; i < in.n; ++i) {
-    const std::size_t k = std::size_t(i);
+  for (std::size_t k = 0; k < n; ++k) {
     const int c = in.corner[k];
     if (c >= 0) {
       side[k] = cs[std::size_t(c)]->side[std::size_t(line)];
@@ -73,22 +73,28 @@ const Polygon& clipHalfPlane(const Polygon& in, const Vec2& a, const Vec2& b, in
     anyOut |= side[k] < 0;
   }
   if (!anyOut) return in;
-  out.n = 0;
-  for (int i = 0; i < in.n; ++i) {
-    const std::size_t k = std::size_t(i), l = i + 1 == in.n ? 0 : k + 1;
+  std::size_t m = 0;
+  const auto push = [&](const Vec2& q, int label, int corner) {
+    out.p[m] = q;
+    out.label[m] = label;
+    out.corner[m++] = corner;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t l = k + 1 == n ? 0 : k + 1;
     const auto crossing = [&] {
       const double t = std::clamp(det[k] / (det[k] - det[l]), 0.0, 1.0);
       return Vec2(in.p[k] + t * (in.p[l] - in.p[k]));
     };
     if (side[k] > 0 && side[l] < 0) {
-      out.push(in.p[k], in.label[k], in.corner[k]);
-      out.push(crossing(), -1, -1);  // exit: the next output (the entry) is along the line
+      push(in.p[k], in.label[k], in.corner[k]);
+      push(crossing(), -1, -1);  // exit: the next output (the entry) is along the line
     } else if (side[k] >= 0) {
-      out.push(in.p[k], side[k] == 0 && side[l] < 0 ? -1 : in.label[k], in.corner[k]);
+      push(in.p[k], side[k] == 0 && side[l] < 0 ? -1 : in.label[k], in.corner[k]);
     } else if (side[l] > 0) {
-      out.push(crossing(), in.label[k], -1);  // entry
+      push(crossing(), in.label[k], -1);  // entry
     }
   }
+  out.n = int(m);
   return out;
 }
 
@@ -98,12 +104,43 @@ double polygonArea(const Polygon& poly) {
   return 0.5 * s;
 }
 
+/// ∫_P 1, ∫_P x, ∫_P x xᵀ of a polygon, coordinates taken relative to `o` (Green's theorem
+/// on the edges, in one pass: exact for any simple polygon; the same sums as a fan triangulation).
+struct Moments {
+  double area = 0, x = 0, y = 0, xx = 0, xy = 0, yy = 0;
+};
+Moments polygonMoments(const Polygon& poly, const Vec2& o) {
+  Moments m;
+  const std::size_t n = std::size_t(poly.n);
+  double px = poly.p[n - 1].x() - o.x(), py = poly.p[n - 1].y() - o.y();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double qx = poly.p[i].x() - o.x(), qy = poly.p[i].y() - o.y();
+    const double c = px * qy - qx * py;
+    m.area += c;
+    m.x += (px + qx) * c;
+    m.y += (py + qy) * c;
+    m.xx += (px * px + px * qx + qx * qx) * c;
+    m.yy += (py * py + py * qy + qy * qy) * c;
+    m.xy += (px * qy + 2 * px * py + 2 * qx * qy + qx * py) * c;
+    px = qx;
+    py = qy;
+  }
+  m.area /= 2;
+  m.x /= 6;
+  m.y /= 6;
+  m.xx /= 12;
+  m.yy /= 12;
+  m.xy /= 24;
+  return m;
+}
+
 /// subject ∩ clip (both CCW), the subject's corner sides given, in one of the two scratch
-/// polygons; nullptr when the intersection has no area. A subject with its three corners
-/// outside one clip line is empty, one with every corner inside every line is itself: neither
-/// is clipped.
-const Polygon* clip(const std::array<Vec2, 3>& s, const std::array<Vec2, 3>& c, const CornerSides& cs,
-                    std::array<Polygon, 2>& scratch) {
+/// polygons; nullptr when it has fewer than 3 vertices. A subject with its three corners
+/// outside one clip line is empty, one with every corner inside every line is itself (returned
+/// as scratch[0]): neither is clipped. A clipped polygon may still have no area: the caller
+/// tests that (with the area it computes anyway).
+const Polygon* clipPolygon(const std::array<Vec2, 3>& s, const std::array<Vec2, 3>& c, const CornerSides& cs,
+                           std::array<Polygon, 2>& scratch) {
   std::array<bool, 3> cuts;  // some corner outside line j: the triangle (convex) is inside the others
   for (std::size_t j = 0; j < 3; ++j) {
     const int s0 = cs[0]->side[j], s1 = cs[1]->side[j], s2 = cs[2]->side[j];
@@ -119,8 +156,14 @@ const Polygon* clip(const std::array<Vec2, 3>& s, const std::array<Vec2, 3>& c, 
     p = &clipHalfPlane(*p, c[std::size_t(j)], c[std::size_t((j + 1) % 3)], j, cs, scratch[p == &a ? 1 : 0]);
     if (p->n < 3) return nullptr;
   }
-  if (p == &a) return p;
-  return polygonArea(*p) > 0 ? p : nullptr;
+  return p;
+}
+
+/// clipPolygon, and nullptr when the intersection has no area.
+const Polygon* clip(const std::array<Vec2, 3>& s, const std::array<Vec2, 3>& c, const CornerSides& cs,
+                    std::array<Polygon, 2>& scratch) {
+  const Polygon* p = clipPolygon(s, c, cs, scratch);
+  return p && (p == &scratch[0] || polygonArea(*p) > 0) ? p : nullptr;
 }
 
 std::array<Vec2, 3> corners(const Mesh2& mesh, int t) {
@@ -136,6 +179,7 @@ struct SideCache {
     int stamp = -1;
   };
   std::vector<Entry> entries;
+  std::vector<int> seen;  // per old triangle: the stamp of the last front that queued it
   const Entry& get(const Mesh2& oldMesh, int v, int stamp, const std::array<Vec2, 3>& c) {
     Entry& e = entries[std::size_t(v)];
     if (e.stamp != stamp) {
@@ -185,6 +229,7 @@ int frontOfTriangle(const Mesh2& oldMesh, const PointLocator& locator, const std
   int start = hint >= 0 ? walkTo(oldMesh, nb, hint, centroid) : -1;
   if (start < 0) start = locator.locate(centroid).triangle;
   visited.assign(1, start);
+  cache.seen[std::size_t(start)] = t;
   thread_local std::vector<int> depth;
   depth.assign(1, 0);
   bool found = false;
@@ -194,11 +239,16 @@ int frontOfTriangle(const Mesh2& oldMesh, const PointLocator& locator, const std
     const auto& otr = oldMesh.triangles[std::size_t(o)];
     const CornerSides cs = {&cache.get(oldMesh, otr[0], t, tri), &cache.get(oldMesh, otr[1], t, tri),
                             &cache.get(oldMesh, otr[2], t, tri)};
-    const Polygon* poly = clip(corners(oldMesh, o), tri, cs, scratch);
+    const Polygon* poly = clipPolygon(corners(oldMesh, o), tri, cs, scratch);
+    Moments m;
+    if (poly) {
+      m = polygonMoments(*poly, tri[0]);
+      if (poly != &scratch[0] && !(m.area > 0)) poly = nullptr;
+    }
     bool cross[3] = {false, false, false};  // by neighbour index (across the edge opposite vertex k)
     if (poly) {
       found = true;
-      piece(o, *poly);
+      piece(o, *poly, m);
       for (int i = 0; i < poly->n; ++i)
         if (poly->label[std::size_t(i)] >= 0) cross[(poly->label[std::size_t(i)] + 2) % 3] = true;
     } else if (found || depth[head] >= 2) {
@@ -208,7 +258,8 @@ int frontOfTriangle(const Mesh2& oldMesh, const PointLocator& locator, const std
     }
     for (int k = 0; k < 3; ++k) {
       const int n = nb[std::size_t(o)][std::size_t(k)];
-      if (cross[k] && n >= 0 && std::find(visited.begin(), visited.end(), n) == visited.end()) {
+      if (cross[k] && n >= 0 && cache.seen[std::size_t(n)] != t) {
+        cache.seen[std::size_t(n)] = t;
         visited.push_back(n);
         depth.push_back(depth[head] + 1);
       }
@@ -265,34 +316,6 @@ std::vector<Eigen::VectorXd> interpolateFields(const Mesh2& oldMesh, const Mesh2
     for (int f = 0; f < nf; ++f) out[std::size_t(f)][v] = (1 - s) * fields[f][e->a] + s * fields[f][e->b];
   }
   return out;
-}
-
-/// ∫_P 1, ∫_P x, ∫_P x xᵀ of a polygon, coordinates taken relative to `o` (Green's theorem
-/// on the edges: exact for any simple polygon; the same sums as a fan triangulation).
-struct Moments {
-  double area = 0, x = 0, y = 0, xx = 0, xy = 0, yy = 0;
-};
-Moments polygonMoments(const Polygon& poly, const Vec2& o) {
-  Moments m;
-  std::array<Vec2, 9> r;
-  for (int i = 0; i < poly.n; ++i) r[std::size_t(i)] = poly.p[std::size_t(i)] - o;
-  for (int i = 0; i < poly.n; ++i) {
-    const Vec2 p = r[std::size_t(i)], q = r[std::size_t(i + 1 < poly.n ? i + 1 : 0)];
-    const double c = p.x() * q.y() - q.x() * p.y();
-    m.area += c;
-    m.x += (p.x() + q.x()) * c;
-    m.y += (p.y() + q.y()) * c;
-    m.xx += (p.x() * p.x() + p.x() * q.x() + q.x() * q.x()) * c;
-    m.yy += (p.y() * p.y() + p.y() * q.y() + q.y() * q.y()) * c;
-    m.xy += (p.x() * q.y() + 2 * p.x() * p.y() + 2 * q.x() * q.y() + q.x() * p.y()) * c;
-  }
-  m.area /= 2;
-  m.x /= 6;
-  m.y /= 6;
-  m.xx /= 12;
-  m.yy /= 12;
-  m.xy /= 24;
-  return m;
 }
 
 /// A linear function a + g·(x − o) on a triangle.
@@ -352,6 +375,7 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
     std::vector<int> visited;
     SideCache cache;
     cache.entries.resize(std::size_t(oldMesh.numVertices()));
+    cache.seen.assign(std::size_t(oldMesh.numTriangles()), -1);
     std::vector<double> moments(3 * std::size_t(nf));
     int hint = -1;
 #pragma omp for schedule(dynamic, kChunk)
@@ -362,8 +386,7 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
       double area = 0;
       int pieces = 0;
       hint = frontOfTriangle(oldMesh, locator, nb, t, tri, t % kChunk == 0 ? -1 : hint, visited, cache,
-                             [&](int old, const Polygon& poly) {
-                               const Moments m = polygonMoments(poly, o);
+                             [&](int old, const Polygon&, const Moments& m) {
                                area += m.area;
                                ++pieces;
                                const Vec2 shift = o - oldMesh.vertices[oldMesh.triangles[std::size_t(old)][0]];
@@ -486,6 +509,18 @@ std::vector<Eigen::VectorXd> projectFields(const Mesh2& oldMesh, const Mesh2& ne
   return out;
 }
 
+/// ∫u and ∫|u| of a P1 field in one pass (the same sums as integrate(mesh, u) and
+/// integrate(mesh, |u|)).
+std::pair<double, double> integrateWithAbs(const Mesh2& mesh, const Eigen::VectorXd& u) {
+  double s = 0, a = 0;
+  for (const auto& tr : mesh.triangles) {
+    const double w = 0.5 * signedArea2(mesh.vertices[tr[0]], mesh.vertices[tr[1]], mesh.vertices[tr[2]]) / 3;
+    s += w * (u[tr[0]] + u[tr[1]] + u[tr[2]]);
+    a += w * (std::abs(u[tr[0]]) + std::abs(u[tr[1]]) + std::abs(u[tr[2]]));
+  }
+  return {s, a};
+}
+
 }  // namespace
 
 TransferMethod parseTransferMethod(const std::string& name) {
@@ -514,7 +549,8 @@ double integrate(const Mesh2& mesh, const Eigen::VectorXd& u) {
   double s = 0;
   for (int t = 0; t < mesh.numTriangles(); ++t) {
     const auto& tr = mesh.triangles[std::size_t(t)];
-    s += mesh.triangleArea(t) / 3 * (u[tr[0]] + u[tr[1]] + u[tr[2]]);
+    s += 0.5 * signedArea2(mesh.vertices[tr[0]], mesh.vertices[tr[1]], mesh.vertices[tr[2]]) / 3 *
+         (u[tr[0]] + u[tr[1]] + u[tr[2]]);
   }
   return s;
 }
@@ -530,8 +566,9 @@ std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& n
                                          ? interpolateFields(oldMesh, newMesh, fields, stats)
                                          : projectFields(oldMesh, newMesh, fields, options, stats);
   for (std::size_t f = 0; f < fields.size(); ++f) {
-    stats.massOld.push_back(integrate(oldMesh, fields[f]));
-    stats.absMassOld.push_back(integrate(oldMesh, fields[f].cwiseAbs()));
+    const auto [mass, absMass] = integrateWithAbs(oldMesh, fields[f]);
+    stats.massOld.push_back(mass);
+    stats.absMassOld.push_back(absMass);
     stats.massNew.push_back(integrate(newMesh, out[f]));
   }
   stats.seconds = watch.seconds();
@@ -546,11 +583,13 @@ void forEachSupermeshPiece(const Mesh2& oldMesh, const Mesh2& newMesh,
   std::vector<int> visited;
   SideCache cache;
   cache.entries.resize(std::size_t(oldMesh.numVertices()));
+  cache.seen.assign(std::size_t(oldMesh.numTriangles()), -1);
   int hint = -1;
   for (int t = 0; t < newMesh.numTriangles(); ++t)
-    hint = frontOfTriangle(
-        oldMesh, locator, nb, t, corners(newMesh, t), hint, visited, cache,
-        [&](int o, const Polygon& poly) { visit(o, t, std::span<const Vec2>(poly.p.data(), std::size_t(poly.n))); });
+    hint = frontOfTriangle(oldMesh, locator, nb, t, corners(newMesh, t), hint, visited, cache,
+                           [&](int o, const Polygon& poly, const Moments&) {
+                             visit(o, t, std::span<const Vec2>(poly.p.data(), std::size_t(poly.n)));
+                           });
 }
 
 std::vector<Vec2> clipTriangles(const std::array<Vec2, 3>& subject, const std::array<Vec2, 3>& clipper) {
