@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
+#include <optional>
 
 namespace ablmg::adapt {
 namespace {
@@ -221,13 +223,68 @@ int walkTo(const Mesh2& mesh, const std::vector<std::array<int, 3>>& nb, int fro
   return -1;
 }
 
+/// The old triangle holding a point, for the fronts' starts: a walk (walkTo) from the old
+/// triangle of a coarse grid cell (about 8 old triangles per cell; the lowest id whose
+/// centroid lies in the cell), and the PointLocator, built on first need only, when the cell
+/// is empty or the walk fails (a point outside the old mesh, a walk through a notch or along
+/// a stretched layer). Only the few starts that no previous front gives are located: the
+/// grid is one pass over the old triangles, where the locator sorts and buckets them all.
+/// The answer is a function of the point alone (not of the thread or the call order).
+class StartFinder {
+ public:
+  StartFinder(const Mesh2& mesh, const std::vector<std::array<int, 3>>& nb) : mesh_(mesh), nb_(nb) {
+    const int nt = mesh.numTriangles();
+    Vec2 lo = mesh.vertices.at(0), hi = lo;
+    for (const auto& v : mesh.vertices) {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+    const Vec2 ext = (hi - lo).cwiseMax(1e-300);
+    const double side = std::sqrt(ext.x() * ext.y() / std::max(1.0, nt / 8.0));
+    nx_ = int(std::clamp(std::floor(ext.x() / side), 0.0, 4095.0)) + 1;
+    ny_ = int(std::clamp(std::floor(ext.y() / side), 0.0, 4095.0)) + 1;
+    lo_ = lo;
+    cellSize_ = Vec2(ext.x() / nx_, ext.y() / ny_);
+    first_.assign(std::size_t(nx_) * std::size_t(ny_), -1);
+    for (int t = 0; t < nt; ++t) {
+      const auto& tr = mesh.triangles[std::size_t(t)];
+      int& c = first_[cell((mesh.vertices[tr[0]] + mesh.vertices[tr[1]] + mesh.vertices[tr[2]]) / 3.0)];
+      if (c < 0) c = t;
+    }
+  }
+  int find(const Vec2& p) const {
+    const int from = first_[cell(p)];
+    const int t = from >= 0 ? walkTo(mesh_, nb_, from, p) : -1;
+    return t >= 0 ? t : locator().locate(p).triangle;
+  }
+  /// The PointLocator of the old mesh (built once, thread-safe).
+  const PointLocator& locator() const {
+    std::call_once(built_, [&] { locator_.emplace(mesh_); });
+    return *locator_;
+  }
+
+ private:
+  std::size_t cell(const Vec2& p) const {
+    const auto index = [](double r, int n) { return r >= 0 ? int(std::min(std::floor(r), double(n - 1))) : 0; };
+    return std::size_t(index((p.y() - lo_.y()) / cellSize_.y(), ny_)) * std::size_t(nx_) +
+           std::size_t(index((p.x() - lo_.x()) / cellSize_.x(), nx_));
+  }
+  const Mesh2& mesh_;
+  const std::vector<std::array<int, 3>>& nb_;
+  Vec2 lo_, cellSize_;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> first_;
+  mutable std::once_flag built_;
+  mutable std::optional<PointLocator> locator_;
+};
+
 template <class Piece>
-int frontOfTriangle(const Mesh2& oldMesh, const PointLocator& locator, const std::vector<std::array<int, 3>>& nb, int t,
+int frontOfTriangle(const Mesh2& oldMesh, const StartFinder& starts, const std::vector<std::array<int, 3>>& nb, int t,
                     const std::array<Vec2, 3>& tri, int hint, std::vector<int>& visited, SideCache& cache,
                     Piece&& piece) {
   const Vec2 centroid = (tri[0] + tri[1] + tri[2]) / 3.0;
   int start = hint >= 0 ? walkTo(oldMesh, nb, hint, centroid) : -1;
-  if (start < 0) start = locator.locate(centroid).triangle;
+  if (start < 0) start = starts.find(centroid);
   visited.assign(1, start);
   cache.seen[std::size_t(start)] = t;
   thread_local std::vector<int> depth;
@@ -362,8 +419,8 @@ std::vector<double> oldAffineFields(const Mesh2& mesh, std::span<const Eigen::Ve
 /// of T, ∫ u_old φ_k follows from the three sums.
 std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, std::span<const Eigen::VectorXd> fields,
                                    TransferStats& stats) {
-  const PointLocator locator(oldMesh);
-  const auto& nb = locator.neighbours();
+  const std::vector<std::array<int, 3>> nb = neighboursOf(oldMesh);
+  const StartFinder starts(oldMesh, nb);
   const std::vector<double> coefficients = oldAffineFields(oldMesh, fields);
   const int nt = newMesh.numTriangles(), nf = int(fields.size());
   constexpr int kChunk = 256;  // the front's start is located from the previous triangle's within a chunk
@@ -385,7 +442,7 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
       std::fill(moments.begin(), moments.end(), 0.0);
       double area = 0;
       int pieces = 0;
-      hint = frontOfTriangle(oldMesh, locator, nb, t, tri, t % kChunk == 0 ? -1 : hint, visited, cache,
+      hint = frontOfTriangle(oldMesh, starts, nb, t, tri, t % kChunk == 0 ? -1 : hint, visited, cache,
                              [&](int old, const Polygon&, const Moments& m) {
                                area += m.area;
                                ++pieces;
@@ -415,60 +472,133 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
   return rhs;
 }
 
-/// y = M x for the consistent P1 mass matrix, without forming it: per triangle
-/// (M_T x)_i = |T|/12 (x_a + x_b + x_c + x_i), so M x = Σ_T |T|/12 (x_a + x_b + x_c) 1_T + (m/4) ∘ x,
-/// m the lumped masses. Returns xᵀ M x. Serial, in triangle order.
-double massApply(const Mesh2& mesh, const Eigen::VectorXd& areas12, const Eigen::VectorXd& quarterLumped,
-                 const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  y = quarterLumped.cwiseProduct(x);
-  for (int t = 0; t < mesh.numTriangles(); ++t) {
-    const auto& tr = mesh.triangles[std::size_t(t)];
-    const double w = areas12[t] * (x[tr[0]] + x[tr[1]] + x[tr[2]]);
-    y[tr[0]] += w;
-    y[tr[1]] += w;
-    y[tr[2]] += w;
+/// The triangles around each vertex of a mesh: entries start[v] … start[v + 1] − 1 of `corner`
+/// hold 3t + k for the triangles t (ascending) whose local vertex k is v. A sum over them in
+/// that order adds the same terms in the same order as a scatter in triangle order.
+struct VertexTriangles {
+  std::vector<int> start, corner;
+  explicit VertexTriangles(const Mesh2& mesh) : start(std::size_t(mesh.numVertices()) + 1, 0) {
+    for (const auto& tr : mesh.triangles)
+      for (int v : tr) ++start[std::size_t(v) + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    corner.resize(std::size_t(start.back()));
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      for (std::size_t k = 0; k < 3; ++k)
+        corner[std::size_t(fill[std::size_t(mesh.triangles[t][k])]++)] = int(3 * t + k);
   }
-  return x.dot(y);
+};
+
+/// The vector operations of the mass solve cut [0, n) into kBlocks fixed ranges, whatever the
+/// thread count; a dot product is the sum of its blocks' partial sums, in block order, so the
+/// bits do not depend on how OpenMP shares the blocks out.
+constexpr int kBlocks = 64;
+struct BlockRange {
+  Eigen::Index lo, hi;
+};
+BlockRange blockRange(Eigen::Index n, int block) { return {n * block / kBlocks, n * (block + 1) / kBlocks}; }
+double sumOfBlocks(const std::array<double, kBlocks>& partial) {
+  double s = 0;
+  for (double p : partial) s += p;
+  return s;
 }
 
-/// Jacobi-preconditioned CG on the mass matrix (see the header), from x (initial guess).
-/// M's diagonal is m/2 (m the lumped masses). Serial: about 25 iterations of a few
-/// milliseconds at 10⁵ vertices, where a parallel region per vector operation would cost more
-/// in synchronisation than it saves, and far more on a loaded machine.
-int massSolve(const Mesh2& mesh, const Eigen::VectorXd& lumped, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+/// The consistent P1 mass matrix of a mesh, applied without being assembled: per triangle
+/// (M_T x)_i = |T|/12 (x_a + x_b + x_c + x_i), so (M x)_i = (m_i/4) x_i + Σ_{T ∋ i} |T|/12 (x_a + x_b + x_c),
+/// m the lumped masses, the sum over i's triangles in triangle order.
+struct MassOperator {
+  const Mesh2& mesh;
+  const VertexTriangles& around;
+  Eigen::VectorXd areas12, quarterLumped, invDiag;  // M's diagonal is m/2
+  /// `areas` the triangles' areas, `lumped` the lumped masses.
+  MassOperator(const Mesh2& m, const VertexTriangles& a, const std::vector<double>& areas,
+               const Eigen::VectorXd& lumped)
+      : mesh(m), around(a), areas12(m.numTriangles()), quarterLumped(lumped / 4), invDiag((lumped / 2).cwiseInverse()) {
+#pragma omp parallel for schedule(static)
+    for (int t = 0; t < m.numTriangles(); ++t) areas12[t] = areas[std::size_t(t)] / 12;
+  }
+  /// y = M x on the vertices of one block; returns that block's part of xᵀ M x.
+  double applyBlock(const Eigen::VectorXd& x, Eigen::VectorXd& y, BlockRange range) const {
+    double xy = 0;
+    for (Eigen::Index i = range.lo; i < range.hi; ++i) {
+      double s = quarterLumped[i] * x[i];
+      for (int e = around.start[std::size_t(i)]; e < around.start[std::size_t(i) + 1]; ++e) {
+        const int t = around.corner[std::size_t(e)] / 3;
+        const auto& tr = mesh.triangles[std::size_t(t)];
+        s += areas12[t] * (x[tr[0]] + x[tr[1]] + x[tr[2]]);
+      }
+      y[i] = s;
+      xy += x[i] * s;
+    }
+    return xy;
+  }
+};
+
+/// Jacobi-preconditioned CG on the mass matrix (see the header), from x (initial guess), in
+/// one parallel region: the blocks are shared out statically, every thread forms the same
+/// dot products from the blocks' partial sums, so all take the same steps.
+int massSolve(const MassOperator& mass, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const double bn = b.norm();
   if (bn == 0) {
     x.setZero();
     return 0;
   }
   const Eigen::Index n = b.size();
-  Eigen::VectorXd areas12(mesh.numTriangles());
-  for (int t = 0; t < mesh.numTriangles(); ++t) areas12[t] = mesh.triangleArea(t) / 12;
-  const Eigen::VectorXd quarter = lumped / 4, invDiag = (lumped / 2).cwiseInverse();
   Eigen::VectorXd r(n), z(n), p(n), q(n);
-  massApply(mesh, areas12, quarter, x, q);
-  r = b - q;
-  z = r.cwiseProduct(invDiag);
-  p = z;
-  double rz = r.dot(z), rr = r.squaredNorm();
+  std::array<double, kBlocks> partialPq{}, partialRz{}, partialRr{};
   const double tol2 = 1e-28 * bn * bn;
-  int it = 0;
-  for (; it < 300 && rr > tol2; ++it) {
-    const double alpha = rz / massApply(mesh, areas12, quarter, p, q);
-    double rzNew = 0;
-    rr = 0;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      x[i] += alpha * p[i];
-      r[i] -= alpha * q[i];
-      z[i] = r[i] * invDiag[i];
-      rzNew += r[i] * z[i];
-      rr += r[i] * r[i];
+  int iterations = 0;
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (int k = 0; k < kBlocks; ++k) {
+      const BlockRange range = blockRange(n, k);
+      mass.applyBlock(x, q, range);
+      double rz = 0, rr = 0;
+      for (Eigen::Index i = range.lo; i < range.hi; ++i) {
+        r[i] = b[i] - q[i];
+        z[i] = r[i] * mass.invDiag[i];
+        p[i] = z[i];
+        rz += r[i] * z[i];
+        rr += r[i] * r[i];
+      }
+      partialRz[std::size_t(k)] = rz;
+      partialRr[std::size_t(k)] = rr;
     }
-    const double beta = rzNew / rz;
-    p = z + beta * p;
-    rz = rzNew;
+    double rz = sumOfBlocks(partialRz), rr = sumOfBlocks(partialRr);
+    int it = 0;
+    for (; it < 300 && rr > tol2; ++it) {
+#pragma omp for schedule(static)
+      for (int k = 0; k < kBlocks; ++k) partialPq[std::size_t(k)] = mass.applyBlock(p, q, blockRange(n, k));
+      const double alpha = rz / sumOfBlocks(partialPq);
+#pragma omp for schedule(static)
+      for (int k = 0; k < kBlocks; ++k) {
+        const BlockRange range = blockRange(n, k);
+        double rzNew = 0, rrNew = 0;
+        for (Eigen::Index i = range.lo; i < range.hi; ++i) {
+          x[i] += alpha * p[i];
+          r[i] -= alpha * q[i];
+          z[i] = r[i] * mass.invDiag[i];
+          rzNew += r[i] * z[i];
+          rrNew += r[i] * r[i];
+        }
+        partialRz[std::size_t(k)] = rzNew;
+        partialRr[std::size_t(k)] = rrNew;
+      }
+      const double rzNew = sumOfBlocks(partialRz);
+      rr = sumOfBlocks(partialRr);
+      const double beta = rzNew / rz;
+      rz = rzNew;
+#pragma omp for schedule(static)
+      for (int k = 0; k < kBlocks; ++k) {
+        const BlockRange range = blockRange(n, k);
+        for (Eigen::Index i = range.lo; i < range.hi; ++i) p[i] = z[i] + beta * p[i];
+      }
+    }
+#pragma omp single nowait
+    iterations = it;
   }
-  return it;
+  return iterations;
 }
 
 /// Clip to [lo, hi] and give the clipped mass back where there is room (see the header).
@@ -490,19 +620,32 @@ void limitBounds(Eigen::VectorXd& u, const Eigen::VectorXd& m, double lo, double
 std::vector<Eigen::VectorXd> projectFields(const Mesh2& oldMesh, const Mesh2& newMesh,
                                            std::span<const Eigen::VectorXd> fields, const TransferOptions& options,
                                            TransferStats& stats) {
-  const int nf = int(fields.size()), nv = newMesh.numVertices();
+  const int nf = int(fields.size()), nv = newMesh.numVertices(), nt = newMesh.numTriangles();
   const std::vector<double> local = supermeshLoads(oldMesh, newMesh, fields, stats);
-  std::vector<Eigen::VectorXd> b(std::size_t(nf), Eigen::VectorXd::Zero(nv));
-  for (int t = 0; t < newMesh.numTriangles(); ++t)
-    for (int k = 0; k < 3; ++k)
-      for (int f = 0; f < nf; ++f)
-        b[std::size_t(f)][newMesh.triangles[std::size_t(t)][std::size_t(k)]] +=
-            local[(std::size_t(t) * 3 + std::size_t(k)) * std::size_t(nf) + std::size_t(f)];
-  const Eigen::VectorXd lumped = fem::lumpedMass(newMesh);
+  const VertexTriangles around(newMesh);
+  std::vector<double> areas(static_cast<std::size_t>(nt));
+#pragma omp parallel for schedule(static)
+  for (int t = 0; t < nt; ++t) areas[std::size_t(t)] = newMesh.triangleArea(t);
+  // b_i = Σ over i's triangles of their local loads, and the lumped masses m_i = Σ |T|/3
+  // (fem::lumpedMass), summed in triangle order: the bits of a serial scatter.
+  std::vector<Eigen::VectorXd> b(static_cast<std::size_t>(nf), Eigen::VectorXd(nv));
+  Eigen::VectorXd lumped(nv);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nv; ++v) {
+    double m = 0;
+    for (int f = 0; f < nf; ++f) b[std::size_t(f)][v] = 0;
+    for (int e = around.start[std::size_t(v)]; e < around.start[std::size_t(v) + 1]; ++e) {
+      const std::size_t c = std::size_t(around.corner[std::size_t(e)]);
+      m += areas[c / 3] / 3;
+      for (int f = 0; f < nf; ++f) b[std::size_t(f)][v] += local[c * std::size_t(nf) + std::size_t(f)];
+    }
+    lumped[v] = m;
+  }
+  const MassOperator mass(newMesh, around, areas, lumped);
   std::vector<Eigen::VectorXd> out(static_cast<std::size_t>(nf));
   for (int f = 0; f < nf; ++f) {
     Eigen::VectorXd x = b[std::size_t(f)].cwiseQuotient(lumped);  // lumped projection: a close start
-    stats.solverIterations = std::max(stats.solverIterations, massSolve(newMesh, lumped, b[std::size_t(f)], x));
+    stats.solverIterations = std::max(stats.solverIterations, massSolve(mass, b[std::size_t(f)], x));
     if (options.boundPreserving) limitBounds(x, lumped, fields[f].minCoeff(), fields[f].maxCoeff());
     out[std::size_t(f)] = std::move(x);
   }
@@ -578,15 +721,15 @@ std::vector<Eigen::VectorXd> transferFields(const Mesh2& oldMesh, const Mesh2& n
 
 void forEachSupermeshPiece(const Mesh2& oldMesh, const Mesh2& newMesh,
                            const std::function<void(int, int, std::span<const Vec2>)>& visit) {
-  const PointLocator locator(oldMesh);
-  const auto& nb = locator.neighbours();
+  const std::vector<std::array<int, 3>> nb = neighboursOf(oldMesh);
+  const StartFinder starts(oldMesh, nb);
   std::vector<int> visited;
   SideCache cache;
   cache.entries.resize(std::size_t(oldMesh.numVertices()));
   cache.seen.assign(std::size_t(oldMesh.numTriangles()), -1);
   int hint = -1;
   for (int t = 0; t < newMesh.numTriangles(); ++t)
-    hint = frontOfTriangle(oldMesh, locator, nb, t, corners(newMesh, t), hint, visited, cache,
+    hint = frontOfTriangle(oldMesh, starts, nb, t, corners(newMesh, t), hint, visited, cache,
                            [&](int o, const Polygon& poly, const Moments&) {
                              visit(o, t, std::span<const Vec2>(poly.p.data(), std::size_t(poly.n)));
                            });

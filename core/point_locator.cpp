@@ -8,12 +8,8 @@
 
 namespace ablmg {
 
-namespace {
-
-/// neighbours[t][k] = the triangle across the edge opposite vertex k of t (−1 on the boundary):
-/// the one holding the reverse half-edge. Half-edges are grouped by their origin vertex
-/// (counting sort, O(n)); a row holds a vertex's few outgoing half-edges. On a valid mesh
-/// (consistently oriented, manifold) this is Mesh2::triangleNeighbours, in a third of its time.
+// Half-edges are grouped by their origin vertex (counting sort, O(n)); a row holds a vertex's
+// few outgoing half-edges, and the neighbour across a→b holds b→a.
 std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
   const std::size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
   std::vector<int> rowStart(nv + 1, 0);
@@ -42,8 +38,6 @@ std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh) {
     }
   return nb;
 }
-
-}  // namespace
 
 namespace {
 

@@ -27,6 +27,11 @@
 
 namespace ablmg {
 
+/// neighbours[t][k] = the triangle across the edge opposite vertex k of t, −1 on the boundary.
+/// On a valid mesh (consistently oriented, manifold) this is Mesh2::triangleNeighbours, in a
+/// third of its time (O(n)).
+std::vector<std::array<int, 3>> neighboursOf(const Mesh2& mesh);
+
 class PointLocator {
  public:
   explicit PointLocator(const Mesh2& mesh);
