@@ -473,19 +473,23 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
 }
 
 /// The triangles around each vertex of a mesh: entries start[v] … start[v + 1] − 1 of `corner`
-/// hold 3t + k for the triangles t (ascending) whose local vertex k is v. A sum over them in
+/// hold 3t + k for the triangles t (ascending) whose local vertex k is v, of `triangle` t. A sum over them in
 /// that order adds the same terms in the same order as a scatter in triangle order.
 struct VertexTriangles {
-  std::vector<int> start, corner;
+  std::vector<int> start, corner, triangle;
   explicit VertexTriangles(const Mesh2& mesh) : start(std::size_t(mesh.numVertices()) + 1, 0) {
     for (const auto& tr : mesh.triangles)
       for (int v : tr) ++start[std::size_t(v) + 1];
     for (std::size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
     corner.resize(std::size_t(start.back()));
     std::vector<int> fill(start.begin(), start.end() - 1);
+    triangle.resize(corner.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-      for (std::size_t k = 0; k < 3; ++k)
-        corner[std::size_t(fill[std::size_t(mesh.triangles[t][k])]++)] = int(3 * t + k);
+      for (std::size_t k = 0; k < 3; ++k) {
+        const std::size_t e = std::size_t(fill[std::size_t(mesh.triangles[t][k])]++);
+        corner[e] = int(3 * t + k);
+        triangle[e] = int(t);
+      }
   }
 };
 
@@ -517,18 +521,26 @@ struct MassOperator {
 #pragma omp parallel for schedule(static)
     for (int t = 0; t < m.numTriangles(); ++t) areas12[t] = areas[std::size_t(t)] / 12;
   }
-  /// y = M x on the vertices of one block; returns that block's part of xᵀ M x.
-  double applyBlock(const Eigen::VectorXd& x, Eigen::VectorXd& y, BlockRange range) const {
+  /// First half of y = M x: s_T = |T|/12 (x_a + x_b + x_c) on the triangles of one block.
+  void sumsBlock(const Eigen::VectorXd& x, Eigen::VectorXd& s, BlockRange range) const {
+    const double *xs = x.data(), *a = areas12.data();
+    double* ss = s.data();
+    const std::array<int, 3>* tri = mesh.triangles.data();
+    for (Eigen::Index t = range.lo; t < range.hi; ++t) ss[t] = a[t] * (xs[tri[t][0]] + xs[tri[t][1]] + xs[tri[t][2]]);
+  }
+  /// Second half, on the vertices of one block, from every triangle's s_T: y_i = (m_i/4) x_i +
+  /// Σ_{T ∋ i} s_T. Returns that block's part of xᵀ M x.
+  double gatherBlock(const Eigen::VectorXd& x, const Eigen::VectorXd& s, Eigen::VectorXd& y, BlockRange range) const {
+    const int* start = around.start.data();
+    const int* triangle = around.triangle.data();
+    const double *xs = x.data(), *ss = s.data(), *q = quarterLumped.data();
+    double* ys = y.data();
     double xy = 0;
     for (Eigen::Index i = range.lo; i < range.hi; ++i) {
-      double s = quarterLumped[i] * x[i];
-      for (int e = around.start[std::size_t(i)]; e < around.start[std::size_t(i) + 1]; ++e) {
-        const int t = around.corner[std::size_t(e)] / 3;
-        const auto& tr = mesh.triangles[std::size_t(t)];
-        s += areas12[t] * (x[tr[0]] + x[tr[1]] + x[tr[2]]);
-      }
-      y[i] = s;
-      xy += x[i] * s;
+      double v = q[i] * xs[i];
+      for (int e = start[i]; e < start[i + 1]; ++e) v += ss[triangle[e]];
+      ys[i] = v;
+      xy += xs[i] * v;
     }
     return xy;
   }
@@ -544,16 +556,19 @@ int massSolve(const MassOperator& mass, const Eigen::VectorXd& b, Eigen::VectorX
     return 0;
   }
   const Eigen::Index n = b.size();
-  Eigen::VectorXd r(n), z(n), p(n), q(n);
+  const Eigen::Index nt = mass.areas12.size();
+  Eigen::VectorXd r(n), z(n), p(n), q(n), sums(nt);
   std::array<double, kBlocks> partialPq{}, partialRz{}, partialRr{};
   const double tol2 = 1e-28 * bn * bn;
   int iterations = 0;
 #pragma omp parallel
   {
 #pragma omp for schedule(static)
+    for (int k = 0; k < kBlocks; ++k) mass.sumsBlock(x, sums, blockRange(nt, k));
+#pragma omp for schedule(static)
     for (int k = 0; k < kBlocks; ++k) {
       const BlockRange range = blockRange(n, k);
-      mass.applyBlock(x, q, range);
+      mass.gatherBlock(x, sums, q, range);
       double rz = 0, rr = 0;
       for (Eigen::Index i = range.lo; i < range.hi; ++i) {
         r[i] = b[i] - q[i];
@@ -569,7 +584,9 @@ int massSolve(const MassOperator& mass, const Eigen::VectorXd& b, Eigen::VectorX
     int it = 0;
     for (; it < 300 && rr > tol2; ++it) {
 #pragma omp for schedule(static)
-      for (int k = 0; k < kBlocks; ++k) partialPq[std::size_t(k)] = mass.applyBlock(p, q, blockRange(n, k));
+      for (int k = 0; k < kBlocks; ++k) mass.sumsBlock(p, sums, blockRange(nt, k));
+#pragma omp for schedule(static)
+      for (int k = 0; k < kBlocks; ++k) partialPq[std::size_t(k)] = mass.gatherBlock(p, sums, q, blockRange(n, k));
       const double alpha = rz / sumOfBlocks(partialPq);
 #pragma omp for schedule(static)
       for (int k = 0; k < kBlocks; ++k) {

@@ -24,15 +24,17 @@
 /// pieces. The old triangles meeting a new triangle T are found by an advancing front
 /// (P. E. Farrell, J. R. Maddison, "Conservative interpolation between volume meshes by local
 /// Galerkin projection", CMAME 200 (2011)): start at the old triangle containing T's centroid
-/// (a walk from the previous new triangle's start, the locator at the start of each block of
-/// 256 new triangles or when the walk fails), then visit the old neighbours across every old
+/// (a walk from the previous new triangle's start; at the start of each block of 256 new
+/// triangles, or when that walk fails, a walk from a coarse grid of the old triangles, and the
+/// PointLocator, built only then, when this one fails too), then visit the old neighbours across every old
 /// edge a piece runs along. Cost linear in the mesh sizes (a few old triangles per new one).
 ///
 /// The mass system M x = b (M the new consistent P1 mass matrix, applied triangle by
 /// triangle without being assembled) is solved by conjugate gradients with the Jacobi
-/// preconditioner, to ‖r‖ ≤ 1e−15 ‖b‖ (or stagnation), serially (a parallel region per
-/// vector operation costs more than it saves at these sizes, and much more when another
-/// process holds a core). Why not a Cholesky factorisation: the Jacobi-scaled P1 mass matrix
+/// preconditioner, to ‖r‖ ≤ 1e−15 ‖b‖ (or stagnation), in one parallel region: the vectors
+/// are cut into 64 fixed blocks whatever the thread count, M x is gathered per vertex over its
+/// triangles (in triangle order), and each dot product is the sum of its blocks' partial sums
+/// in block order. Why not a Cholesky factorisation: the Jacobi-scaled P1 mass matrix
 /// has its spectrum in [1/2, 2] on any triangle mesh, however anisotropic (A. J. Wathen,
 /// "Realistic eigenvalue bounds for the Galerkin mass matrix", IMA J. Numer. Anal. 7 (1987)),
 /// so CG converges by a factor ≈ 1/3 per iteration: ≈ 25 triangle sweeps per field, cheaper
@@ -49,7 +51,8 @@
 /// Deterministic: every new triangle's contributions are computed alone (OpenMP over blocks
 /// of 256 new triangles; a block's first triangle is located from the grid, the next ones
 /// walk from their predecessor's start, so no hint crosses a block) and summed in triangle
-/// order, so the bits do not depend on the thread count.
+/// order, and the mass solve's sums are over fixed blocks in a fixed order, so the bits do not
+/// depend on the thread count.
 #include "ablmg/core/mesh2.hpp"
 
 #include <Eigen/Core>
