@@ -32,9 +32,34 @@ void fixBlasThreads() {
 
 using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
 
+/// CHOLMOD's per-supernode overhead, not its flops, dominates a 2-D P1 factorisation at
+/// 10⁵ unknowns: every supernode opens a few OpenMP regions (CHOLMOD's compiled-in loops; a
+/// team of one under CholmodScope still costs an allocation and a futex round each) and a
+/// handful of small BLAS calls. Two settings, both chosen by CHOLMOD's own symbolic counts
+/// (deterministic: the same matrix takes the same path):
+///  - supernodal = CHOLMOD_AUTO: a simplicial (up-looking) factorisation when the flops
+///    per factor entry are below CHOLMOD's supernodal_switch (40), i.e. when the fronts are
+///    too small for BLAS to pay. The tanh layer's adapted mesh (8.7·10⁴ unknowns, 0.05 GFlop,
+///    flops/nnz 30) takes it: 0.18 → 0.12 s CPU; the uniform and wave-front meshes (170–210)
+///    and the 10⁶ grid stay supernodal. final_ll: the simplicial path computes LLᵀ, whose
+///    non-positive pivot is an error (LDLᵀ would accept an indefinite matrix).
+///  - nrelax = {16, 64, 256} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
+///    small supernodes, allowing explicit zeros. On the uniform 317² grid 2.4× fewer OpenMP
+///    regions and 6.5 % fewer instructions (callgrind); {64, 256, 1024} doubles the
+///    instructions (the zeros' flops), zrelax changes did not help; the 10⁶ grid unchanged.
+/// Measured with bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
+void configureFactorisation(cholmod_common& c) {
+  c.supernodal = CHOLMOD_AUTO;
+  c.final_ll = 1;
+  c.nrelax[0] = 16;
+  c.nrelax[1] = 64;
+  c.nrelax[2] = 256;
+}
+
 /// Factorises M with CHOLMOD; InputError if M is not SPD.
 void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
   llt.cholmod().print = 0;  // libraries never print: CHOLMOD's warnings become our InputError
+  configureFactorisation(llt.cholmod());
   fixBlasThreads();
   const CholmodScope serial;
   llt.compute(M);

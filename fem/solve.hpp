@@ -1,6 +1,7 @@
 #pragma once
-/// Solving the assembled P1 Poisson system with CHOLMOD's supernodal Cholesky factorisation
-/// (Eigen::CholmodSupernodalLLT).
+/// Solving the assembled P1 Poisson system with CHOLMOD's Cholesky factorisation
+/// (Eigen::CholmodSupernodalLLT, with CHOLMOD choosing the simplicial path when the fronts are
+/// too small for BLAS to pay: fem/solve.cpp, configureFactorisation).
 ///
 /// Fill-reducing ordering: by default our geometric nested dissection (fem/ordering.hpp) —
 /// the unknowns are permuted before CHOLMOD sees them and CHOLMOD keeps that order — because
