@@ -26,6 +26,18 @@ int tagOfEdge(const Domain& domain, const Vec2& a, const Vec2& b, double tol) {
   ABLMG_FAIL("structuredMesh: boundary edge at (" << m.x() << ", " << m.y() << ") lies on no domain segment");
 }
 
+/// Splits the cell a-b-c-d (counter-clockwise from its lower-left corner) into two triangles,
+/// the diagonal alternating with the cell's parity so that the pattern has no preferred direction.
+void splitCell(Mesh2& mesh, int a, int b, int c, int d, bool even) {
+  if (even) {
+    mesh.triangles.push_back({a, b, c});
+    mesh.triangles.push_back({a, c, d});
+  } else {
+    mesh.triangles.push_back({a, b, d});
+    mesh.triangles.push_back({b, c, d});
+  }
+}
+
 }  // namespace
 
 Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, std::uint64_t seed) {
@@ -72,14 +84,7 @@ Mesh2 structuredMesh(const Domain& domain, int nx, int ny, double perturbation, 
     for (int i = 0; i < nx; ++i) {
       const Vec2 c(lo.x() + (i + 0.5) * hx, lo.y() + (j + 0.5) * hy);
       if (!domain.contains(c)) continue;
-      const int a = vertex(i, j), b = vertex(i + 1, j), cc = vertex(i + 1, j + 1), d = vertex(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        mesh.triangles.push_back({a, b, cc});
-        mesh.triangles.push_back({a, cc, d});
-      } else {
-        mesh.triangles.push_back({a, b, d});
-        mesh.triangles.push_back({b, cc, d});
-      }
+      splitCell(mesh, vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1), (i + j) % 2 == 0);
     }
   ABLMG_REQUIRE(!mesh.triangles.empty(), "structuredMesh: no cell centre lies in the domain");
 
@@ -132,14 +137,7 @@ Mesh2 gridRegionMesh(const std::vector<double>& xs, const std::vector<double>& y
       const int ref = refOfCell(0.5 * (xs[std::size_t(i)] + xs[std::size_t(i) + 1]),
                                 0.5 * (ys[std::size_t(j)] + ys[std::size_t(j) + 1]));
       cellRef[std::size_t(j) * std::size_t(nx) + std::size_t(i)] = ref;
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if ((i + j) % 2 == 0) {
-        mesh.triangles.push_back({a, b, c});
-        mesh.triangles.push_back({a, c, d});
-      } else {
-        mesh.triangles.push_back({a, b, d});
-        mesh.triangles.push_back({b, c, d});
-      }
+      splitCell(mesh, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 0);
       mesh.triangleRefs.insert(mesh.triangleRefs.end(), 2, ref);
     }
   const auto refAt = [&](int i, int j) { return cellRef[std::size_t(j) * std::size_t(nx) + std::size_t(i)]; };

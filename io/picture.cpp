@@ -79,6 +79,17 @@ std::string fmt(double v) {
   return buf;
 }
 
+/// Strokes the boundary or interface edges `edges` of `mesh` in the current colour, `width` wide.
+template <class Edges>
+void strokeEdges(cairo_t* cr, const View& v, const Mesh2& mesh, const Edges& edges, double width) {
+  cairo_set_line_width(cr, width);
+  for (const auto& e : edges) {
+    cairo_move_to(cr, v.px(mesh.vertices[e.a].x()), v.py(mesh.vertices[e.a].y()));
+    cairo_line_to(cr, v.px(mesh.vertices[e.b].x()), v.py(mesh.vertices[e.b].y()));
+  }
+  cairo_stroke(cr);
+}
+
 void drawEdges(cairo_t* cr, const View& v, const Mesh2& mesh, double width, double grey) {
   cairo_set_source_rgb(cr, grey, grey, grey);
   cairo_set_line_width(cr, width);
@@ -139,20 +150,10 @@ void drawMesh(const std::string& path, const Mesh2& mesh, std::span<const double
   }
   drawEdges(cr, v, mesh, o.lineWidth, coloured ? 0.2 : 0.0);
   cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 2 * o.lineWidth + 0.8);
-  for (const auto& e : mesh.boundaryEdges) {
-    cairo_move_to(cr, v.px(mesh.vertices[e.a].x()), v.py(mesh.vertices[e.a].y()));
-    cairo_line_to(cr, v.px(mesh.vertices[e.b].x()), v.py(mesh.vertices[e.b].y()));
-  }
-  cairo_stroke(cr);
+  strokeEdges(cr, v, mesh, mesh.boundaryEdges, 2 * o.lineWidth + 0.8);
   if (!mesh.interfaceEdges.empty()) {
     cairo_set_source_rgb(cr, 0.75, 0, 0);
-    cairo_set_line_width(cr, 1.5 * o.lineWidth + 0.6);
-    for (const auto& e : mesh.interfaceEdges) {
-      cairo_move_to(cr, v.px(mesh.vertices[e.a].x()), v.py(mesh.vertices[e.a].y()));
-      cairo_line_to(cr, v.px(mesh.vertices[e.b].x()), v.py(mesh.vertices[e.b].y()));
-    }
-    cairo_stroke(cr);
+    strokeEdges(cr, v, mesh, mesh.interfaceEdges, 1.5 * o.lineWidth + 0.6);
   }
   c.save(path);
 }
