@@ -129,6 +129,21 @@ struct AdaptOptions {
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
   /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
   bool warmStart = false;
+  /// Repeated passes at one size (equal consecutive targetVertices) are run only while they can
+  /// change the mesh: after a cycle whose next metric is within this metricChange of the metric
+  /// the cycle's mesh was built for, the remaining passes at that size are skipped and the
+  /// schedule goes on with the next size (0: every pass runs). Default 0.06: a pass whose
+  /// metric moved less than ≈ 6 % in edge length rebuilds the same mesh up to the placement's
+  /// scatter. Measured (`ablmg adapt --problem NAME --vertices 16000`, 3 passes per size below
+  /// 10⁴): the first pass after a size doubling has metricChange 0.01–0.05 on the corners,
+  /// the wave front, the peak and the line singularity from 10³ vertices on, and their errors
+  /// move by less than 2 % over the repeats (noise); 0.2–0.8 where the passes still find a
+  /// feature (steep front to 4·10³, tanh layer's first pass to 5·10³, multiple to 2·10³), whose
+  /// H1 errors then fall by 15–60 % per pass; 0.04–0.08 on their later, converged passes
+  /// (≤ 3 % change). Saves 2 of 3 passes per size where they buy nothing, about a third of the
+  /// time to a given error on the corner problems (docs/benchmarks.md, "Adaptive loop
+  /// against FreeFem++").
+  double repeatMinChange = 0.06;
   /// Called at each stage of each cycle (solve, recover, metric, and the mesher's stages and
   /// placement steps), with Progress::cycle and cycles set (core/progress.hpp); empty: none.
   /// The results do not depend on it.
@@ -141,6 +156,11 @@ void validate(const AdaptOptions& options);
 struct QualitySummary {
   double mean = 0, min = 0;  ///< of q(T) = 4√3 |T|_M / Σ |e|²_M ∈ (0, 1], 1 = equilateral in M
 };
+/// Mean over vertices of the largest relative change of a unit edge's length from metric `from`
+/// to metric `to` at the vertex, as a logarithm: max(|ln √μ₁|, |ln √μ₂|), μ the eigenvalues of
+/// from⁻¹ to. 0 when they are equal, ln 2 ≈ 0.69 when every size halves. Equal sizes required.
+double metricChange(std::span<const Metric2> from, std::span<const Metric2> to);
+
 /// Element quality in the metric the mesh was built for (per-vertex metrics, the triangle's
 /// metric being the mean of its three vertices').
 QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics);
@@ -160,6 +180,9 @@ struct CycleReport {
   mesher::MeshStats meshStats;                       ///< the mesher's statistics and stage times for mesh_k
   long predictedVertices = 0;                        ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
+  /// How far the metric recovered on mesh_k (for the next size) is from the one mesh_k was built
+  /// for: metricChange(current, next) below; NaN in the last cycle.
+  double metricChange = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AdaptReport {
