@@ -132,18 +132,17 @@ struct AdaptOptions {
   /// Repeated passes at one size (equal consecutive targetVertices) are run only while they can
   /// change the mesh: after a cycle whose next metric is within this metricChange of the metric
   /// the cycle's mesh was built for, the remaining passes at that size are skipped and the
-  /// schedule goes on with the next size (0: every pass runs). Default 0.06: a pass whose
-  /// metric moved less than ≈ 6 % in edge length rebuilds the same mesh up to the placement's
-  /// scatter. Measured (`ablmg adapt --problem NAME --vertices 16000`, 3 passes per size below
-  /// 10⁴): the first pass after a size doubling has metricChange 0.01–0.05 on the corners,
-  /// the wave front, the peak and the line singularity from 10³ vertices on, and their errors
-  /// move by less than 2 % over the repeats (noise); 0.2–0.8 where the passes still find a
-  /// feature (steep front to 4·10³, tanh layer's first pass to 5·10³, multiple to 2·10³), whose
-  /// H1 errors then fall by 15–60 % per pass; 0.04–0.08 on their later, converged passes
-  /// (≤ 3 % change). Saves 2 of 3 passes per size where they buy nothing, about a third of the
-  /// time to a given error on the corner problems (docs/benchmarks.md, "Adaptive loop
-  /// against FreeFem++").
-  double repeatMinChange = 0.06;
+  /// schedule goes on with the next size (0, the default: every pass runs). Off because the
+  /// mean hides the one place where the passes matter: on the corner problems the first pass
+  /// after a size doubling has metricChange 0.01–0.05 (the bulk does not move), yet each pass
+  /// deepens the grading at the singular point, and skipping the repeats from 10³ vertices on
+  /// (threshold 0.06) raised the L-shape's H1 error by 5–9 % at 4·10³–1.6·10⁴ vertices (H1
+  /// 1.02–1.05× FreeFem's instead of 0.96; `run.sh --problem lshape --maxnv 4e4`, time to
+  /// FreeFem's H1 error 0.28 of its loop). Elsewhere it is what it looks like: the wave front,
+  /// the peak and the line singularity show 0.01–0.05 and errors within 2 % over the repeats;
+  /// 0.2–0.8 where the passes still find a feature (steep front to 4·10³, tanh layer to 5·10³,
+  /// multiple to 2·10³ vertices), with H1 errors falling by 15–60 % per pass.
+  double repeatMinChange = 0;
   /// Called at each stage of each cycle (solve, recover, metric, and the mesher's stages and
   /// placement steps), with Progress::cycle and cycles set (core/progress.hpp); empty: none.
   /// The results do not depend on it.
