@@ -238,9 +238,14 @@ struct ReferenceSolution {
 };
 ReferenceSolution referenceSolution(const AdaptProblem& problem, double vertices, const AdaptOptions& options);
 
-/// Σ over `input`'s interface edges of the length not covered by `output`'s interface edges
-/// on the same line (0 to round-off when every input interface edge lies on a chain of
-/// output interface edges: the interfaces are resolved). Brute force, O(input × output).
+/// For each of `input`'s interface edges ab, the length of ab covered by `output`'s interface
+/// edges on the same line (overlaps summed, so a value above |ab| means output edges overlap
+/// each other). |ab| to round-off for every edge when the interfaces are resolved. Output edges
+/// are found through a bucket grid of cell = mean input interface edge length: linear time for
+/// output edges no longer than the domain's extent in cells.
+std::vector<double> interfaceCoverage(const Mesh2& input, const Mesh2& output);
+/// Σ over `input`'s interface edges of max(0, |ab| − interfaceCoverage): the length of the
+/// input's interfaces missing from the output (0 to round-off when they are resolved).
 double uncoveredInterfaceLength(const Mesh2& input, const Mesh2& output);
 
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
