@@ -18,6 +18,7 @@ void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(o.cycles >= 0, "adapt options: cycles must be >= 0 (got " << o.cycles << ")");
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "adapt options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
+  ABLMG_REQUIRE(o.l2Share >= 0 && o.l2Share < 1, "adapt options: l2Share must be in [0, 1) (got " << o.l2Share << ")");
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
                 "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
   MetricOptions m = o.metric;

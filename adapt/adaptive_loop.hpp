@@ -119,6 +119,23 @@ struct AdaptOptions {
   /// 0.91, multiple 0.63/0.84 → 0.60/0.86; at 2·10⁴: hgrad 1.2 peak H1 0.92–0.93, 1.1: the steep
   /// front's L2 0.74–1.02 but the peak's H1 1.03 and the line singularity's 0.95–1.00).
   double hgrad = 1.25;
+  /// φ ∈ [0, 1): share of the complexity given to the L2-optimal metric M_2 (p = 2, same shape
+  /// blend and bounds): the metric is M_p(u; (1 − φ) N) ∩ M_2(u; φ N) (core::intersect), rescaled
+  /// to N (after gradation). Each part alone would cost at most a factor (1 − φ)^(−1/2) resp.
+  /// φ^(−1/2) in its own norm's interpolation error; the intersection is a compromise between
+  /// p = ∞'s H1-optimal grading and p = 2's L2-optimal one. 0 (default) = off. Why one might want
+  /// it: on the wave front of α = 1000 the FE L2 error is 4–6× the interpolation error, and it
+  /// is generated beside the front: at 2.8·10⁴ vertices (defaults) 73 % of
+  /// ‖e‖²_L2 = Σ_T ∫_T ∇e·∇(z − z_h) (z: −Δz = e; scripts/front_l2_dwr.py) comes from the
+  /// triangles 3·10⁻³–0.1 away from the front, which hold 12 % of the H1² error and 15 % of the
+  /// triangles: there ∇e is moderate but the elements are large for the dual z. p = 2 puts more
+  /// vertices there (density det|H|^(1/3) against √det|H|). Measured (run.sh's FreeFem++ loops
+  /// to 2–4·10⁴ vertices, defaults otherwise, worst ratios over the cycles ≥ 5·10³, L2 / H1):
+  /// steep front 1.29/0.37 → 0.92/0.38 (φ = 0.3), 0.87/0.41 (φ = 0.5; p = 2 alone: 0.85/0.43),
+  /// but at φ = 0.5 the L-shape 0.85/0.96 → 0.94/0.98, the peak's H1 0.92 → 0.95 and the line
+  /// singularity's L2 rate −0.79 → −0.47 (the corner's dual is singular too: p = ∞ is its
+  /// L2-optimal grading, see metric above). So it is off by default.
+  double l2Share = 0;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);

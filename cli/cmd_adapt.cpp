@@ -5,6 +5,7 @@
 //               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
+//               [--hmax-uniform K] [--l2-share F]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
@@ -137,6 +138,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
     } else if (key == "--hmax") {
       a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
+    } else if (key == "--l2-share") {
+      a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
+    } else if (key == "--hmax-uniform") {
+      a.options.metric.hmaxUniform = parseNumber(value(), "adapt: --hmax-uniform", Infinity::Allowed);
     } else if (key == "--max-aniso") {
       a.options.metric.maxAnisotropy = parseNumber(value(), "adapt: --max-aniso");
     } else if (key == "--seed") {
@@ -184,9 +189,9 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << key
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --max-aniso --seed --stop-l2 --stop-h1 --warm-start --lattice "
-                           "--repeat-min-change --plateau-gain --uniform --vtu --medit --reference-vertices --out-dir "
-                           "--print-options)");
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --max-aniso --seed --stop-l2 --stop-h1 "
+                           "--warm-start --lattice --repeat-min-change "
+                           "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -291,6 +296,9 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"hmax", std::isinf(a.options.metric.hmax) ? nlohmann::json("inf") : nlohmann::json(a.options.metric.hmax)},
           {"max_anisotropy", a.options.metric.maxAnisotropy},
           {"hgrad", a.options.hgrad},
+          {"hmax_uniform", std::isinf(a.options.metric.hmaxUniform) ? nlohmann::json("inf")
+                                                                    : nlohmann::json(a.options.metric.hmaxUniform)},
+          {"l2_share", a.options.l2Share},
           {"warm_start", a.options.warmStart},
           {"repeat_min_change", a.options.repeatMinChange},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
@@ -303,8 +311,8 @@ const char* kAdaptHelp =
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
-                   [--hmin H] [--hmax H] [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E]
-                   [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
+                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--max-aniso R] [--seed S]
+                   [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
 
