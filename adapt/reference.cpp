@@ -7,7 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace ablmg::adapt {
 namespace {
@@ -62,21 +66,90 @@ ReferenceSolution referenceSolution(const AdaptProblem& problem, double vertices
   return r;
 }
 
-double uncoveredInterfaceLength(const Mesh2& input, const Mesh2& output) {
-  double uncovered = 0;
+namespace {
+
+/// Bucket grid of segments: a segment is listed in every cell that one of its sample points
+/// (spaced by half a cell) falls in, so two segments sharing a piece of length > 0 are listed
+/// in the same or in neighbouring cells.
+class SegmentGrid {
+ public:
+  explicit SegmentGrid(double cell) : cell_(cell) {}
+
+  void add(int id, const Vec2& p, const Vec2& q) {
+    for (const auto key : cellsAlong(p, q)) cells_[key].push_back(id);
+  }
+  /// Ids of the segments listed in the cells around the samples of pq, sorted, unique.
+  std::vector<int> near(const Vec2& p, const Vec2& q) const {
+    std::vector<int> ids;
+    for (const auto key : cellsAlong(p, q))
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          const auto it = cells_.find(key + pack(dx, dy));
+          if (it != cells_.end()) ids.insert(ids.end(), it->second.begin(), it->second.end());
+        }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  }
+
+ private:
+  static std::int64_t pack(std::int64_t i, std::int64_t j) { return i * (std::int64_t(1) << 32) + j; }
+  std::vector<std::int64_t> cellsAlong(const Vec2& p, const Vec2& q) const {
+    const int samples = 1 + int(std::ceil(2 * (q - p).norm() / cell_));
+    std::vector<std::int64_t> keys;
+    for (int k = 0; k <= samples; ++k) {
+      const Vec2 s = p + (q - p) * (double(k) / samples);
+      keys.push_back(pack(std::int64_t(std::floor(s.x() / cell_)), std::int64_t(std::floor(s.y() / cell_))));
+    }
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+  }
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> cells_;
+};
+
+}  // namespace
+
+std::vector<double> interfaceCoverage(const Mesh2& input, const Mesh2& output) {
+  std::vector<double> covered(input.interfaceEdges.size(), 0.0);
+  if (covered.empty()) return covered;
+  const auto endpoints = [](const Mesh2& m, const BoundaryEdge& e) {
+    return std::pair(m.vertices[std::size_t(e.a)], m.vertices[std::size_t(e.b)]);
+  };
+  double meanLength = 0;
   for (const auto& e : input.interfaceEdges) {
-    const Vec2 a = input.vertices[std::size_t(e.a)], b = input.vertices[std::size_t(e.b)];
-    const double len = (b - a).norm();
-    const auto onLine = [&](const Vec2& p) { return std::abs(cross(b - a, p - a)) <= 1e-12 * len * len; };
-    const auto param = [&](const Vec2& p) { return (p - a).dot(b - a) / (len * len); };
-    double covered = 0;
-    for (const auto& f : output.interfaceEdges) {
-      const Vec2 p = output.vertices[std::size_t(f.a)], q = output.vertices[std::size_t(f.b)];
+    const auto [a, b] = endpoints(input, e);
+    meanLength += (b - a).norm() / double(input.interfaceEdges.size());
+  }
+  if (!(meanLength > 0)) return covered;
+  SegmentGrid grid(meanLength);
+  for (std::size_t k = 0; k < output.interfaceEdges.size(); ++k) {
+    const auto [p, q] = endpoints(output, output.interfaceEdges[k]);
+    grid.add(int(k), p, q);
+  }
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    const auto [a, b] = endpoints(input, input.interfaceEdges[i]);
+    const double len2 = (b - a).squaredNorm();
+    const auto onLine = [&](const Vec2& p) { return std::abs(cross(b - a, p - a)) <= 1e-12 * len2; };
+    const auto param = [&](const Vec2& p) { return (p - a).dot(b - a) / len2; };
+    for (const int k : grid.near(a, b)) {
+      const auto [p, q] = endpoints(output, output.interfaceEdges[std::size_t(k)]);
       if (!onLine(p) || !onLine(q)) continue;
       const double lo = std::max(0.0, std::min(param(p), param(q))), hi = std::min(1.0, std::max(param(p), param(q)));
-      if (hi > lo) covered += (hi - lo) * len;
+      if (hi > lo) covered[i] += (hi - lo) * std::sqrt(len2);
     }
-    uncovered += std::max(0.0, len - covered);
+  }
+  return covered;
+}
+
+double uncoveredInterfaceLength(const Mesh2& input, const Mesh2& output) {
+  const std::vector<double> covered = interfaceCoverage(input, output);
+  double uncovered = 0;
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    const auto& e = input.interfaceEdges[i];
+    const double len = (input.vertices[std::size_t(e.b)] - input.vertices[std::size_t(e.a)]).norm();
+    uncovered += std::max(0.0, len - covered[i]);
   }
   return uncovered;
 }

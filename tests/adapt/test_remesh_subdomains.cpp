@@ -4,6 +4,7 @@
 // of the input subdomain it lies in, every input interface edge is covered by a chain of output
 // interface edges, each subdomain's area is kept to round-off on polygons, repeated remeshing of
 // a curved interface does not drift, corners and required entities stay, bad inputs are errors.
+#include "ablmg/adapt/adaptive_loop.hpp"
 #include "ablmg/adapt/remesh.hpp"
 
 #include "ablmg/core/error.hpp"
@@ -65,23 +66,16 @@ int refAt(const Mesh2& m, const Vec2& p) {
   return -1;
 }
 
-/// Every input interface edge ab is covered by output interface edges on its line: the
-/// overlaps of those edges with ab add up to |ab| (to round-off), so on a polygonal interface
-/// each input edge lies on a chain of output edges.
+/// Every input interface edge ab is covered exactly once by output interface edges on its
+/// line: their overlaps with ab add up to |ab| (to round-off), so on a polygonal interface
+/// each input edge lies on a chain of output edges, and no two output edges overlap.
 void expectInterfacesCovered(const Mesh2& in, const Mesh2& out) {
-  for (const auto& e : in.interfaceEdges) {
-    const Vec2 a = in.vertices[std::size_t(e.a)], b = in.vertices[std::size_t(e.b)];
-    const double len = (b - a).norm();
-    const auto onLine = [&](const Vec2& p) { return std::abs(cross(b - a, p - a)) <= 1e-12 * len * len; };
-    const auto param = [&](const Vec2& p) { return (p - a).dot(b - a) / (len * len); };
-    double covered = 0;
-    for (const auto& f : out.interfaceEdges) {
-      const Vec2 p = out.vertices[std::size_t(f.a)], q = out.vertices[std::size_t(f.b)];
-      if (!onLine(p) || !onLine(q)) continue;
-      const double lo = std::max(0.0, std::min(param(p), param(q))), hi = std::min(1.0, std::max(param(p), param(q)));
-      if (hi > lo) covered += (hi - lo) * len;
-    }
-    EXPECT_NEAR(covered, len, 1e-12 * len) << "input interface edge (" << e.a << ", " << e.b << ")";
+  const std::vector<double> covered = adapt::interfaceCoverage(in, out);
+  ASSERT_EQ(covered.size(), in.interfaceEdges.size());
+  for (std::size_t i = 0; i < covered.size(); ++i) {
+    const auto& e = in.interfaceEdges[i];
+    const double len = (in.vertices[std::size_t(e.b)] - in.vertices[std::size_t(e.a)]).norm();
+    EXPECT_NEAR(covered[i], len, 1e-12 * len) << "input interface edge (" << e.a << ", " << e.b << ")";
   }
 }
 
@@ -135,6 +129,24 @@ TEST(RemeshSubdomains, PolygonalSubdomainsKeepAreasRefsAndInterfaces) {
   const RemeshResult again = remesh(in, metric, o);
   EXPECT_EQ(again.mesh.vertices, r.mesh.vertices);
   EXPECT_EQ(again.mesh.triangles, r.mesh.triangles);
+}
+
+TEST(InterfaceCoverage, SumsOverlapsOnTheSameLinePerInputEdge) {
+  Mesh2 in;
+  in.vertices = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1)};
+  in.interfaceEdges = {{0, 1, 2}, {1, 2, 2}};
+  Mesh2 out;
+  out.vertices = {Vec2(0, 0), Vec2(0.5, 0), Vec2(1, 0), Vec2(1, 0.25), Vec2(0.5, 0.5)};
+  out.interfaceEdges = {{1, 0, 2}, {1, 2, 2}, {2, 3, 2}, {0, 4, 2}};  // the last one is off both lines
+  auto c = interfaceCoverage(in, out);
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_NEAR(c[0], 1.0, 1e-15);
+  EXPECT_NEAR(c[1], 0.25, 1e-15);
+  EXPECT_NEAR(uncoveredInterfaceLength(in, out), 0.75, 1e-15);
+  out.interfaceEdges.push_back({0, 1, 2});  // overlaps an edge already there
+  c = interfaceCoverage(in, out);
+  EXPECT_NEAR(c[0], 1.5, 1e-15);
+  EXPECT_NEAR(uncoveredInterfaceLength(in, out), 0.75, 1e-15);
 }
 
 TEST(RemeshSubdomains, GmshAndFreeFemMultiRegionFiles) {
