@@ -54,11 +54,23 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     mo.hmax = std::max(0.25 * (hi - lo).norm(), 2 * mo.hmin);
   }
   auto& metric = r.metric;
-  metric = metricFromHessians(mesh, hessians, mo);
-  if (options.hgrad > 1) {
-    GradationOptions go;
-    go.hgrad = options.hgrad;
-    r.gradation = limitGradation(mesh, metric, go);
+  if (options.l2Share > 0) {
+    MetricOptions m2 = mo;
+    m2.p = 2;
+    m2.targetVertices = options.l2Share * targetVertices;
+    mo.targetVertices = (1 - options.l2Share) * targetVertices;
+    metric = intersectFields(metricFromHessians(mesh, hessians, mo), metricFromHessians(mesh, hessians, m2));
+    mo.targetVertices = targetVertices;
+  } else {
+    metric = metricFromHessians(mesh, hessians, mo);
+  }
+  mo.hmax = effectiveHmax(mesh, mo);
+  if (options.hgrad > 1 || options.l2Share > 0) {
+    if (options.hgrad > 1) {
+      GradationOptions go;
+      go.hgrad = options.hgrad;
+      r.gradation = limitGradation(mesh, metric, go);
+    }
     // Gradation only refines: restore the complexity by a uniform rescale (shape kept).
     const double c = metricComplexity(mesh, metric), target = complexityForVertices(targetVertices);
     const double s = target / c;

@@ -119,6 +119,23 @@ struct AdaptOptions {
   /// 0.91, multiple 0.63/0.84 → 0.60/0.86; at 2·10⁴: hgrad 1.2 peak H1 0.92–0.93, 1.1: the steep
   /// front's L2 0.74–1.02 but the peak's H1 1.03 and the line singularity's 0.95–1.00).
   double hgrad = 1.25;
+  /// φ ∈ [0, 1): share of the complexity given to the L2-optimal metric M_2 (p = 2, same shape
+  /// blend and bounds): the metric is M_p(u; (1 − φ) N) ∩ M_2(u; φ N) (core::intersect), rescaled
+  /// to N (after gradation). Each part alone would cost at most a factor (1 − φ)^(−1/2) resp.
+  /// φ^(−1/2) in its own norm's interpolation error; the intersection is a compromise between
+  /// p = ∞'s H1-optimal grading and p = 2's L2-optimal one. 0 (default) = off. Why one might want
+  /// it: on the wave front of α = 1000 the FE L2 error is 4–6× the interpolation error, and it
+  /// is generated beside the front: at 2.8·10⁴ vertices (defaults) 73 % of
+  /// ‖e‖²_L2 = Σ_T ∫_T ∇e·∇(z − z_h) (z: −Δz = e; scripts/front_l2_dwr.py) comes from the
+  /// triangles 3·10⁻³–0.1 away from the front, which hold 12 % of the H1² error and 15 % of the
+  /// triangles: there ∇e is moderate but the elements are large for the dual z. p = 2 puts more
+  /// vertices there (density det|H|^(1/3) against √det|H|). Measured (run.sh's FreeFem++ loops
+  /// to 2–4·10⁴ vertices, defaults otherwise, worst ratios over the cycles ≥ 5·10³, L2 / H1):
+  /// steep front 1.29/0.37 → 0.92/0.38 (φ = 0.3), 0.87/0.41 (φ = 0.5; p = 2 alone: 0.85/0.43),
+  /// but at φ = 0.5 the L-shape 0.85/0.96 → 0.94/0.98, the peak's H1 0.92 → 0.95 and the line
+  /// singularity's L2 rate −0.79 → −0.47 (the corner's dual is singular too: p = ∞ is its
+  /// L2-optimal grading, see metric above). So it is off by default.
+  double l2Share = 0;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
@@ -129,6 +146,20 @@ struct AdaptOptions {
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
   /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
   bool warmStart = false;
+  /// Repeated passes at one size (equal consecutive targetVertices) are run only while they can
+  /// change the mesh: after a cycle whose next metric is within this metricChange of the metric
+  /// the cycle's mesh was built for, the remaining passes at that size are skipped and the
+  /// schedule goes on with the next size (0, the default: every pass runs). Off because the
+  /// mean hides the one place where the passes matter: on the corner problems the first pass
+  /// after a size doubling has metricChange 0.01–0.05 (the bulk does not move), yet each pass
+  /// deepens the grading at the singular point, and skipping the repeats from 10³ vertices on
+  /// (threshold 0.06) raised the L-shape's H1 error by 5–9 % at 4·10³–1.6·10⁴ vertices (H1
+  /// 1.02–1.05× FreeFem's instead of 0.96; `run.sh --problem lshape --maxnv 4e4`, time to
+  /// FreeFem's H1 error 0.28 of its loop). Elsewhere it is what it looks like: the wave front,
+  /// the peak and the line singularity show 0.01–0.05 and errors within 2 % over the repeats;
+  /// 0.2–0.8 where the passes still find a feature (steep front to 4·10³, tanh layer to 5·10³,
+  /// multiple to 2·10³ vertices), with H1 errors falling by 15–60 % per pass.
+  double repeatMinChange = 0;
   /// Called at each stage of each cycle (solve, recover, metric, and the mesher's stages and
   /// placement steps), with Progress::cycle and cycles set (core/progress.hpp); empty: none.
   /// The results do not depend on it.
@@ -141,6 +172,11 @@ void validate(const AdaptOptions& options);
 struct QualitySummary {
   double mean = 0, min = 0;  ///< of q(T) = 4√3 |T|_M / Σ |e|²_M ∈ (0, 1], 1 = equilateral in M
 };
+/// Mean over vertices of the largest relative change of a unit edge's length from metric `from`
+/// to metric `to` at the vertex, as a logarithm: max(|ln √μ₁|, |ln √μ₂|), μ the eigenvalues of
+/// from⁻¹ to. 0 when they are equal, ln 2 ≈ 0.69 when every size halves. Equal sizes required.
+double metricChange(std::span<const Metric2> from, std::span<const Metric2> to);
+
 /// Element quality in the metric the mesh was built for (per-vertex metrics, the triangle's
 /// metric being the mean of its three vertices').
 QualitySummary metricQuality(const Mesh2& mesh, std::span<const Metric2> metrics);
@@ -160,6 +196,9 @@ struct CycleReport {
   mesher::MeshStats meshStats;                       ///< the mesher's statistics and stage times for mesh_k
   long predictedVertices = 0;                        ///< the mesher's estimate N* for mesh_k
   int gradationSweeps = 0;
+  /// How far the metric recovered on mesh_k (for the next size) is from the one mesh_k was built
+  /// for: metricChange(current, next) below; NaN in the last cycle.
+  double metricChange = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AdaptReport {

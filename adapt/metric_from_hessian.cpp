@@ -29,6 +29,7 @@ void validate(const MetricOptions& o) {
   ABLMG_REQUIRE(o.norm == ErrorNorm::L2 || o.norm == ErrorNorm::H1, "metric options: unknown norm " << int(o.norm));
   ABLMG_REQUIRE(!o.shapeBlend || (*o.shapeBlend >= 0 && *o.shapeBlend <= 1),
                 "metric options: shapeBlend must be in [0, 1] (got " << o.shapeBlend.value_or(0) << ")");
+  ABLMG_REQUIRE(o.hmaxUniform > 0, "metric options: hmaxUniform must be > 0 or inf (got " << o.hmaxUniform << ")");
   ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1,
                 "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
 }
@@ -69,6 +70,14 @@ double metricComplexity(const Mesh2& mesh, std::span<const Metric2> metrics) {
     c += mesh.triangleArea(t) * (s[tri[0]] + s[tri[1]] + s[tri[2]]) / 3.0;
   }
   return c;
+}
+
+double effectiveHmax(const Mesh2& mesh, const MetricOptions& o) {
+  if (!std::isfinite(o.hmaxUniform)) return o.hmax;
+  double area = 0;
+  for (int t = 0; t < mesh.numTriangles(); ++t) area += mesh.triangleArea(t);
+  const double hN = std::sqrt(2 * area / (std::sqrt(3.0) * o.targetVertices));
+  return std::max(std::min(o.hmax, o.hmaxUniform * hN), 2 * o.hmin);
 }
 
 namespace {
@@ -121,12 +130,13 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
     sqrtDet[v] = std::sqrt(m[0] * m[1]);
   }
   const double target = complexityForVertices(o.targetVertices);
+  const double hmax = effectiveHmax(mesh, o);
   double d = target / integrate(mesh, sqrtDet);
   std::vector<Metric2> out(n);
   for (int it = 0; it < 60; ++it) {
     for (int v = 0; v < n; ++v) {
       const Hessian2 m = d * shape[v];
-      out[v] = boundMetric(Metric2::raw(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)), o.hmin, o.hmax, o.maxAnisotropy);
+      out[v] = boundMetric(Metric2::raw(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)), o.hmin, hmax, o.maxAnisotropy);
     }
     const double c = metricComplexity(mesh, out);
     if (std::abs(c / target - 1) < 1e-4) break;

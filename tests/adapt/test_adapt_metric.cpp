@@ -65,3 +65,34 @@ TEST(AdaptMetric, MetricQualityOfEquilateralMeshIsOne) {
   metric.pop_back();
   EXPECT_THROW(metricQuality(m, metric), InputError);
 }
+
+// l2Share φ: M_∞(u; (1 − φ) N) ∩ M_2(u; φ N), rescaled to N. p = 2 spreads the density
+// (det|H|^(1/3) against √det|H|), so the share moves vertices from the front to the far field
+// at the same complexity.
+TEST(AdaptMetric, L2ShareKeepsTheComplexityAndMovesDensityToTheFarField) {
+  const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);
+  const auto u = waveFront(mesh);
+  auto densities = [&](double share, double hgrad) {
+    AdaptOptions o;
+    o.hgrad = hgrad;
+    o.l2Share = share;
+    const auto m = adaptMetric(mesh, u, 8000, o).metric;
+    EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(8000), 1.0, 0.01) << share << " " << hgrad;
+    double front = 0, far = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      const double r = (mesh.vertices[v] + Vec2(0.05, 0.05)).norm(), d = std::sqrt(m[v].det());
+      if (std::abs(r - 0.7) < 0.01) front = std::max(front, d);
+      if (r > 1.2) far = std::max(far, d);
+    }
+    return std::pair{front, far};
+  };
+  for (double hgrad : {0.0, 1.25}) {
+    const auto [front0, far0] = densities(0, hgrad);
+    const auto [front1, far1] = densities(0.5, hgrad);
+    EXPECT_LT(front1, 0.95 * front0) << "hgrad " << hgrad;
+    EXPECT_GT(far1, 1.2 * far0) << "hgrad " << hgrad;
+  }
+  AdaptOptions bad;
+  bad.l2Share = 1;
+  EXPECT_THROW(validate(bad), InputError);
+}

@@ -72,6 +72,30 @@ TEST(MetricFromHessian, ComplexityMatchesTargetWithActiveBounds) {
   }
 }
 
+// hmaxUniform κ: h ≤ κ h_N, h_N = √(2|Ω|/(√3 N)) (|Ω| = 1 here), at the requested complexity.
+TEST(MetricFromHessian, HmaxUniformBoundsTheLargestSize) {
+  const Mesh2 mesh = fem::unitSquareMesh(40, 0.1, 3);
+  MetricOptions o;
+  o.targetVertices = 5000;
+  o.p = std::numeric_limits<double>::infinity();
+  const double hN = std::sqrt(2 / (std::sqrt(3.0) * 5000));
+  double largest = 0;
+  for (const auto& x : metricFromHessians(mesh, frontHessians(mesh), o)) largest = std::max(largest, x.eigen().h1);
+  ASSERT_GT(largest, 3 * hN);  // without the floor the far field is coarser: the bound below is active
+  o.hmaxUniform = 2;
+  EXPECT_NEAR(effectiveHmax(mesh, o), 2 * hN, 1e-12);
+  const auto m = metricFromHessians(mesh, frontHessians(mesh), o);
+  EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(5000), 1.0, 2e-3);
+  int hit = 0;
+  for (const auto& x : m) {
+    EXPECT_LE(x.eigen().h1, 2 * hN * (1 + 1e-9));
+    hit += x.eigen().h1 > 0.999 * 2 * hN;
+  }
+  EXPECT_GT(hit, 0);
+  o.hmaxUniform = 0;
+  EXPECT_THROW(validate(o), InputError);
+}
+
 TEST(MetricFromHessian, LpScalingOfAConstantHessian) {
   // Constant H = diag(a, b): M = D |H| for every p (the det factor is constant), and
   // D · sqrt(ab) · area = (√3/2) N. Eigenvectors and the anisotropy sqrt(a/b) are kept.
