@@ -5,7 +5,7 @@
 //               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
-//               [--hmax-uniform K] [--l2-share F]
+//               [--hmax-uniform K] [--l2-share F] [--dual-weight G]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
@@ -138,6 +138,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
     } else if (key == "--hmax") {
       a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
+    } else if (key == "--dual-weight") {
+      a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
     } else if (key == "--l2-share") {
       a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
     } else if (key == "--hmax-uniform") {
@@ -185,7 +187,8 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << key
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --hmax-uniform --l2-share --max-aniso --seed --stop-l2 --stop-h1 "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --max-aniso --seed "
+                           "--stop-l2 --stop-h1 "
                            "--warm-start --lattice "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
@@ -295,6 +298,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"hmax_uniform", std::isinf(a.options.metric.hmaxUniform) ? nlohmann::json("inf")
                                                                     : nlohmann::json(a.options.metric.hmaxUniform)},
           {"l2_share", a.options.l2Share},
+          {"dual_weight", a.options.dualWeight},
           {"warm_start", a.options.warmStart},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
           {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
@@ -306,8 +310,8 @@ const char* kAdaptHelp =
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
-                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--max-aniso R] [--seed S]
-                   [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
+                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G]
+                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
                    [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
 
