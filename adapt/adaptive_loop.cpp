@@ -129,10 +129,48 @@ mesher::MeshOptions cycleMeshOptions(const AdaptOptions& options, int cycle, int
   return m;
 }
 
+}  // namespace
+
+double metricChange(std::span<const Metric2> from, std::span<const Metric2> to) {
+  ABLMG_REQUIRE(from.size() == to.size(),
+                "metricChange: " << from.size() << " and " << to.size() << " metrics (equal counts required)");
+  if (from.empty()) return 0;
+  double sum = 0;
+  for (std::size_t v = 0; v < from.size(); ++v) {
+    const Metric2& a = from[v];
+    const Metric2& b = to[v];
+    // det(b − μ a) = 0: det(a) μ² − (a11 b22 + a22 b11 − 2 a12 b12) μ + det(b) = 0.
+    const double da = a.det(), db = b.det();
+    const double t = (a.m11() * b.m22() + a.m22() * b.m11() - 2 * a.m12() * b.m12()) / da;
+    const double disc = std::sqrt(std::max(0.0, 0.25 * t * t - db / da));
+    const double mu1 = 0.5 * t + disc, mu2 = std::max(0.5 * t - disc, 1e-300);
+    sum += 0.5 * std::max(std::abs(std::log(mu1)), std::abs(std::log(mu2)));
+  }
+  return sum / double(from.size());
+}
+
+namespace {
+
 /// Reports the loop's own stage of cycle k (solve, recover, metric) on mesh_k.
 void reportStage(const AdaptOptions& options, const char* stage, int cycle, int cycles, long vertices) {
   if (options.progress) options.progress({.stage = stage, .nodes = vertices, .cycle = cycle, .cycles = cycles});
 }
+/// Where the schedule goes on after position s: the last repeat of target(s) (so that the next
+/// cycle is the next size) when target(s + 1) repeats target(s) and the metric changed by less
+/// than options.repeatMinChange; s otherwise. The last size's repeats are never skipped past the
+/// schedule's end (the last position stays the last cycle).
+int repeatsToSkip(const AdaptOptions& options, int s, int cycles, double change) {
+  if (!(options.repeatMinChange > 0) || !(change < options.repeatMinChange)) return s;
+  auto target = [&](int k) {
+    return options.targetVertices[std::min<std::size_t>(std::size_t(k), options.targetVertices.size() - 1)];
+  };
+  int j = s;
+  while (j + 1 < cycles && target(j + 1) == target(s)) ++j;
+  // Skip to the last repeat only when a larger size follows; otherwise keep one more pass at
+  // this, the final, size so that the loop still ends on a mesh adapted at it.
+  return j + 1 < cycles ? j : s;
+}
+
 /// The convergence curve (the last cycle of each target size) and its log-log rates over the
 /// last rateWindow (≤ 4) points; NaN where they cannot be fitted (fewer than 2 distinct sizes,
 /// no exact solution for the errors, a non-positive estimate).
@@ -185,10 +223,12 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
   Stopwatch watch;
   mesher::MeshResult current = uniformMesh(problem, target(0), cycleMeshOptions(options, 0, cycles));
   double tMesh = watch.seconds();
-  for (int k = 0; k < cycles; ++k) {
+  // k: the cycle (one solve each); s: its place in the schedule, which skips the repeated
+  // passes that repeatMinChange finds unnecessary.
+  for (int k = 0, s = 0; s < cycles; ++k, ++s) {
     CycleReport row;
     row.cycle = k;
-    row.targetVertices = target(k);
+    row.targetVertices = target(s);
     row.vertices = current.mesh.numVertices();
     row.triangles = current.mesh.numTriangles();
     row.tMesh = tMesh;
@@ -198,7 +238,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.qMean = q.mean;
     row.qMin = q.min;
 
-    reportStage(options, "solve", k, cycles, row.vertices);
+    reportStage(options, "solve", s, cycles, row.vertices);
     watch.restart();
     const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
     row.tSolve = watch.seconds();
@@ -218,19 +258,25 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     std::vector<Metric2> next;
     const bool reached =
         (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
-    report.stoppedEarly = reached && k + 1 < cycles;
-    const bool last = k + 1 == cycles || reached;
+    report.stoppedEarly = reached && s + 1 < cycles;
+    const bool last = s + 1 == cycles || reached;
     // Recovered Hessians: the error estimate of every cycle, and the next metric.
-    reportStage(options, "recover", k, cycles, row.vertices);
+    reportStage(options, "recover", s, cycles, row.vertices);
     watch.restart();
     const auto hessians =
         recoverHessians(current.mesh, std::span<const double>(sol.u.data(), sol.u.size()), options.hessian);
     row.tRecover = watch.seconds();
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
-      reportStage(options, "metric", k, cycles, row.vertices);
+      reportStage(options, "metric", s, cycles, row.vertices);
       const std::vector<double> scale = dualWeightScale(current.mesh, sol.u, poisson, options);
-      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(k + 1), options, scale);
+      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
+      row.metricChange = metricChange(current.metric, a.metric);
+      const int skipTo = repeatsToSkip(options, s, cycles, row.metricChange);
+      if (skipTo > s) {
+        s = skipTo;
+        if (target(s + 1) != target(s)) a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
+      }
       next = std::move(a.metric);
       row.tMetric = a.secondsMetric;
       row.gradationSweeps = a.gradation.sweeps;
@@ -239,7 +285,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     if (onCycle) onCycle(CycleData{report.cycles.back(), current.mesh, current.metric, sol.u, err, next});
     if (last) break;
     watch.restart();
-    mesher::MeshOptions meshOptions = cycleMeshOptions(options, k + 1, cycles);
+    mesher::MeshOptions meshOptions = cycleMeshOptions(options, s + 1, cycles);
     if (options.warmStart) {
       const std::vector<Vec2> seeds = interiorVertices(current.mesh);
       meshOptions.placement.warmStart.insert(meshOptions.placement.warmStart.end(), seeds.begin(), seeds.end());

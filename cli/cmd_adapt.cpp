@@ -7,7 +7,7 @@
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
-//               [--lattice short|axes|long] [--plateau-gain G] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+//               [--lattice short|axes|long] [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
@@ -159,6 +159,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
     } else if (key == "--warm-start") {
       a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
+    } else if (key == "--repeat-min-change") {
+      const double c = parseNumber(value(), "adapt: --repeat-min-change");
+      ABLMG_REQUIRE(c >= 0 && c <= 10, "adapt: --repeat-min-change must be in [0, 10], got " << c);
+      a.options.repeatMinChange = c;
     } else if (key == "--plateau-gain") {
       const double g = parseNumber(value(), "adapt: --plateau-gain");
       ABLMG_REQUIRE(g >= 0 && g < 1, "adapt: --plateau-gain must be in [0, 1), got " << g);
@@ -188,8 +192,7 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --max-aniso --seed "
-                           "--stop-l2 --stop-h1 "
-                           "--warm-start --lattice "
+                           "--stop-l2 --stop-h1 --warm-start --lattice --repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
@@ -300,6 +303,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"l2_share", a.options.l2Share},
           {"dual_weight", a.options.dualWeight},
           {"warm_start", a.options.warmStart},
+          {"repeat_min_change", a.options.repeatMinChange},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
           {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
           {"seed", a.options.mesh.placement.seed}};
@@ -311,8 +315,9 @@ const char* kAdaptHelp =
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G]
-                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
-                   [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
+                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long]
+                   [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off]
+                   [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
@@ -331,6 +336,9 @@ each size below N1 (default 10000); --target-vertices: cycle k targets N_k verti
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
+--repeat-min-change C: a size's remaining passes are skipped after a cycle whose next metric
+differs from the one its mesh was built for by less than C (dM= in the cycle lines: the mean
+largest log change of a unit edge's length; 0 = run every pass; adapt/adaptive_loop.hpp).
 --lattice: the initial bubble lattice has one row along each node's short-size direction
 (short, the default here), the x axis's image (axes) or the long-size direction (long).
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
@@ -405,6 +413,7 @@ int runAdapt(const std::vector<std::string>& argv) {
     std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
     if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
     std::printf(" est=%.3e", r.l2InterpEstimate);
+    if (std::isfinite(r.metricChange)) std::printf(" dM=%.3f", r.metricChange);
     std::printf(
         " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
         "metric %.2fs mesh %.2fs\n",

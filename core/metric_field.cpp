@@ -60,10 +60,12 @@ void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Met
   // Fixed chunks of consecutive points (the same answers for any thread count); a point
   // starts at its hint (without one: the chunk's previous answer) or at the grid's start
   // (PointLocator::startNear), whichever is closer: a stale hint costs no long walk.
+  // One chunk is evaluated outside any OpenMP region: the lattice and the post-pass ask for one
+  // point at a time, and entering even an if(false) region costs ~1 µs (a team set up and torn
+  // down): the lattice of a 10⁶-triangle remesh took 2.2 s instead of 1.3 s.
   constexpr long kChunk = 256;
   const long n = long(points.size()), chunks = (n + kChunk - 1) / kChunk;
-#pragma omp parallel for schedule(static) if (n > kChunk)
-  for (long c = 0; c < chunks; ++c) {
+  const auto chunk = [&](long c) {
     int previous = -1;
     for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
       const Vec2& p = points[std::size_t(i)];
@@ -72,7 +74,13 @@ void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Met
       previous = hints[std::size_t(i)] = loc.triangle;
       out[std::size_t(i)] = interpolate(loc);
     }
+  };
+  if (chunks <= 1) {
+    if (chunks == 1) chunk(0);
+    return;
   }
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < chunks; ++c) chunk(c);
 }
 
 void BackgroundMetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const {

@@ -11,9 +11,32 @@
 /// threads' parallel regions are unaffected), so every region CHOLMOD opens from this thread
 /// runs with a team of one; the destructor restores the previous value. The loops compute
 /// the same values either way: results are bitwise unchanged.
+///
+/// fixBlasThreads(): the one BLAS policy of every CHOLMOD factorisation and solve in fem/
+/// (solve.cpp, heat.cpp): OpenBLAS runs with kBlasThreads = 1 thread, whatever
+/// OMP_NUM_THREADS or OPENBLAS_NUM_THREADS say. Two reasons:
+///  - OpenBLAS's threaded dpotrf blocks, hence rounds, differently for each thread count
+///    (measured: the 10⁵- and 10⁶-unknown solves give other bits with 2, 3 and 4 threads), so
+///    only a count fixed in code gives the same u_h, and the same adapted mesh, everywhere;
+///  - a supernodal factorisation of a 2-D P1 matrix is thousands of small BLAS calls, on
+///    which OpenBLAS's pthread pool wakes and spins (sched_yield): on a shared machine a call
+///    waits for a descheduled helper (a 33k-unknown adapted mesh took 10–30 s wall for 0.26
+///    GFlop in the adaptive loop). Two threads fixed in code, tried at 10⁵ and 10⁶ unknowns
+///    on a loaded 2-core machine, took 1.2–1.7× the CPU of one thread and no less wall time.
 #include <omp.h>
 
+// OpenBLAS's thread-count setter, if the BLAS loaded at run time is OpenBLAS (weak: null
+// otherwise, e.g. with the reference BLAS, which is single-threaded anyway).
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
 namespace ablmg::fem {
+
+inline constexpr int kBlasThreads = 1;
+
+/// Sets OpenBLAS to kBlasThreads threads (process-wide; a no-op without OpenBLAS).
+inline void fixBlasThreads() {
+  if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
+}
 
 class CholmodScope {
  public:

@@ -10,8 +10,6 @@
 
 #include <cmath>
 
-extern "C" void openblas_set_num_threads(int) __attribute__((weak));
-
 namespace ablmg::fem {
 
 struct HeatSolver::Factor {
@@ -84,7 +82,7 @@ void HeatSolver::factorise(double c) {
   f->llt.cholmod().print = 0;
   f->llt.cholmod().nmethods = 1;
   f->llt.cholmod().method[0].ordering = CHOLMOD_AMD;
-  if (openblas_set_num_threads) openblas_set_num_threads(2);
+  fixBlasThreads();
   const CholmodScope serial;
   f->llt.compute(Aff);
   ABLMG_REQUIRE(f->llt.info() == Eigen::Success, "heat solver: CHOLMOD could not factorise the "

@@ -15,7 +15,8 @@
 /// ordering) once and reused for every step with the same c; factorisations() counts them.
 /// The mesh is fixed for the solver's life: after a remesh, build a new HeatSolver and give it
 /// the transferred state (adapt/transfer.hpp), u^n and u^(n−1) both for BDF2.
-/// Deterministic: the same bits for any thread count (BLAS pinned to 2 threads as in solve.hpp).
+/// Deterministic: the same bits for any thread count (BLAS pinned to one thread, the policy of
+/// fem/cholmod_threads.hpp, fixBlasThreads).
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/fem/transient_problems.hpp"
 

@@ -7,28 +7,12 @@
 
 #include <Eigen/CholmodSupport>
 
-// OpenBLAS's thread-count setter, if the BLAS loaded at run time is OpenBLAS (weak: null
-// otherwise, e.g. with the reference BLAS, which is single-threaded anyway).
-extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+#include <algorithm>
+#include <utility>
+#include <vector>
 
 namespace ablmg::fem {
 namespace {
-
-/// The factorisation runs with one BLAS thread, whatever OMP_NUM_THREADS or
-/// OPENBLAS_NUM_THREADS say. Two reasons:
-///  - OpenBLAS's threaded dpotrf rounds differently for each thread count: one fixed count
-///    gives the same bits on every machine;
-///  - CHOLMOD's supernodal factorisation of a 2-D P1 matrix is thousands of small BLAS calls
-///    (the largest front at 10⁶ unknowns is a few thousand columns). OpenBLAS's pthread pool
-///    wakes and spins (sched_yield) on each call, and on a loaded machine or next to the
-///    mesher's OpenMP threads a call waits for a descheduled helper: the factorisation of a
-///    33k-unknown adapted mesh took 10–30 s wall in the adaptive loop on a shared 2-core
-///    machine, 60 % of its samples in the kernel's scheduler, for 0.26 GFlop.
-constexpr int kBlasThreads = 1;
-
-void fixBlasThreads() {
-  if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
-}
 
 using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
 
@@ -54,6 +38,40 @@ void configureFactorisation(cholmod_common& c) {
   c.nrelax[0] = 16;
   c.nrelax[1] = 64;
   c.nrelax[2] = 256;
+}
+
+/// The lower triangle of P A Pᵀ (new index k = position of old index order[k]), each column's
+/// rows sorted (CHOLMOD's `sorted` flag, set by Eigen's view, is then true). One pass over A;
+/// the upper triangle, which CHOLMOD never reads for a lower-stored matrix, is not built.
+Eigen::SparseMatrix<double> permutedLower(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order,
+                                          const std::vector<int>& position) {
+  const int n = int(A.rows());
+  Eigen::SparseMatrix<double> L(n, n);
+  std::vector<int> outer(std::size_t(n) + 1, 0);
+  for (int k = 0; k < n; ++k) {
+    int count = 0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, order[std::size_t(k)]); it; ++it)
+      count += position[std::size_t(it.index())] >= k;
+    outer[std::size_t(k) + 1] = outer[std::size_t(k)] + count;
+  }
+  L.resizeNonZeros(outer[std::size_t(n)]);
+  std::copy(outer.begin(), outer.end(), L.outerIndexPtr());
+  std::vector<std::pair<int, double>> column;
+  for (int k = 0; k < n; ++k) {
+    column.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, order[std::size_t(k)]); it; ++it) {
+      const int row = position[std::size_t(it.index())];
+      if (row >= k) column.emplace_back(row, it.value());
+    }
+    std::sort(column.begin(), column.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    int* rows = L.innerIndexPtr() + outer[std::size_t(k)];
+    double* values = L.valuePtr() + outer[std::size_t(k)];
+    for (std::size_t e = 0; e < column.size(); ++e) {
+      rows[e] = column[e].first;
+      values[e] = column[e].second;
+    }
+  }
+  return L;
 }
 
 /// Factorises M with CHOLMOD; InputError if M is not SPD.
@@ -86,17 +104,24 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
         options.ordering == Ordering::Metis
             ? metisNestedDissection(system.A)
             : geometricNestedDissection(system.A, system.dofPoints, options.leafSize, options.cut);
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P{int(n)};  // old index → new index
-    for (int k = 0; k < int(n); ++k) P.indices()[order[k]] = k;
-    Eigen::SparseMatrix<double> Ap;
-    Ap = system.A.twistedBy(P);
+    std::vector<int> position(static_cast<std::size_t>(n));  // old index → new index
+    for (int k = 0; k < int(n); ++k) position[std::size_t(order[std::size_t(k)])] = k;
+    const Eigen::SparseMatrix<double> Ap = permutedLower(system.A, order, position);
     orderingSeconds = watch.seconds();
+    // Our order, as it is: no fill-reducing permutation and no etree postorder by CHOLMOD.
+    // Nested dissection with AMD leaves is close to a postorder already; CHOLMOD's weighted
+    // postorder only reorders siblings (same flops and factor non-zeros), and with it the
+    // factor counts as permuted, which makes cholmod_factorize transpose A twice per call.
     llt.cholmod().nmethods = 1;
-    llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;  // keep ours
+    llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    llt.cholmod().postorder = 0;
     factorise(llt, Ap);
-    const Eigen::VectorXd bp = P * system.b;
+    Eigen::VectorXd bp(n);
+    for (Eigen::Index i = 0; i < n; ++i) bp[position[std::size_t(i)]] = system.b[i];
     const CholmodScope serial;
-    x = P.transpose() * llt.solve(bp);
+    const Eigen::VectorXd xp = llt.solve(bp);
+    x.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) x[i] = xp[position[std::size_t(i)]];
   } else {
     factorise(llt, system.A);
     const CholmodScope serial;

@@ -18,7 +18,9 @@
 /// OPENBLAS_NUM_THREADS — our OpenMP loops sum in a fixed order, and the factorisation always
 /// runs OpenBLAS with 1 thread (its threaded dpotrf rounds differently per thread count, and
 /// its thread pool spins on each of the supernodal factorisation's many small calls: on a
-/// loaded machine that made the solve 10–100× slower; fem/solve.cpp).
+/// loaded machine that made the solve 10–100× slower; fem/cholmod_threads.hpp, fixBlasThreads).
+/// With our ordering CHOLMOD gets the lower triangle of the permuted matrix and keeps our order
+/// as it is (no etree postorder: same flops and factor non-zeros, no per-call transposes).
 ///
 /// Errors (InputError, with the reason): the system is not SPD or is singular — κ ≤ 0, no
 /// Dirichlet boundary (pure Neumann), a mesh piece without Dirichlet vertex (from assemble()),

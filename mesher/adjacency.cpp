@@ -1,7 +1,7 @@
 #include "ablmg/mesher/adjacency.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
 
-#include "ablmg/core/bucket_grid.hpp"
+#include "ablmg/core/point_box_tree.hpp"
 
 #include <omp.h>
 
@@ -17,6 +17,11 @@ namespace {
 /// a cheap per-bubble loop): the dynamics' local refreshes recompute 10²–10⁴ rows per step,
 /// which kMinParallelItems left on one thread below 2048 rows.
 constexpr int kMinParallelRows = 128;
+
+/// reachBox(m, radius) widened by 10⁻⁹ of itself: a pair that passes withinMetricRadius in
+/// floating point lies in one node's box even when the rounding of the box's square roots and
+/// of the lengths falls the wrong way at its edge (the tree reports only points in the box).
+Vec2 searchBox(const Metric2& m, double radius) { return reachBox(m, radius) * (1 + 1e-9); }
 
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
@@ -52,18 +57,11 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   if (n == 0) return {};
-  Vec2 lo = x[0], hi = x[0];
-  for (const auto& p : x) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const double area = std::max((hi - lo).prod(), 1e-300);
-  BucketGrid grid(lo, hi, std::max(std::sqrt(area / n), 1e-12 * (hi - lo).norm() + 1e-300), 4L * n + 16);
-  grid.build(x);
+  const PointBoxTree tree(x);
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
-    const Vec2 R = reachBox(m[i], radius);
+    const Vec2 R = searchBox(m[i], radius);
     const std::size_t start = out.size();
-    grid.forEachInBox(x[i], R.x(), R.y(), [&](int j) {
+    tree.forEachInBox(x[i], R.x(), R.y(), [&](int j) {
       if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
     });
     std::sort(out.begin() + std::ptrdiff_t(start), out.end());
@@ -362,37 +360,26 @@ AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> ma
   const int nOld = old.size();
   // Pairs with a new bubble k lie in the reach box (reachBox) of k or of the partner: each new
   // bubble searches all bubbles within its own box, and each bubble searches the new ones
-  // within its box (a grid of the new bubbles only). Local reaches: a fine bubble never scans
+  // within its box (a tree of the new bubbles only). Local reaches: a fine bubble never scans
   // the box a coarse one needs (a global max h1 made graded remeshes scan ~10⁴ nodes per
   // insertion).
   std::vector<std::pair<int, int>> pairs;  // (row, partner), both directions
   if (firstNew < n) {
-    Vec2 lo = x[0], hi = x[0];
-    for (const auto& p : x) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    const double area = std::max((hi - lo).prod(), 1e-300);
-    const double tiny = 1e-12 * (hi - lo).norm() + 1e-300;
-    BucketGrid all(lo, hi, std::max(std::sqrt(area / n), tiny), 4L * n + 16);
-    all.build(x);
-    const int nNew = n - firstNew;
-    BucketGrid fresh(lo, hi, std::max(std::sqrt(area / nNew), tiny), 4L * nNew + 16);
-    fresh.build(x.subspan(std::size_t(firstNew)));
+    const PointBoxTree all(x), fresh(x.subspan(std::size_t(firstNew)));
     std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
 #pragma omp parallel if (n >= kMinParallelItems)
     {
       auto& out = found[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static) nowait
       for (int k = firstNew; k < n; ++k) {
-        const Vec2 R = reachBox(m[k], radius);
+        const Vec2 R = searchBox(m[k], radius);
         all.forEachInBox(x[k], R.x(), R.y(), [&](int j) {
           if (j != k && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
         });
       }
 #pragma omp for schedule(static)
       for (int j = 0; j < n; ++j) {
-        const Vec2 R = reachBox(m[j], radius);
+        const Vec2 R = searchBox(m[j], radius);
         fresh.forEachInBox(x[j], R.x(), R.y(), [&](int q) {
           const int k = firstNew + q;
           if (k != j && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});

@@ -49,13 +49,13 @@ std::vector<CellVertex> voronoiCell(const std::vector<std::pair<Vec2, int>>& pts
 }  // namespace
 
 LocalTopology localTopology(std::span<const Vec2> x, std::span<const Metric2> m, std::span<const NodeKind> kinds,
-                            const AdjacencyLists& adj, double minEdge) {
+                            const AdjacencyLists& adj, double minEdge, int stride) {
   const int n = adj.size();
   std::vector<std::vector<int>> rows;
   rows.resize(std::size_t(n));
 #pragma omp parallel for schedule(dynamic, 256) if (n >= kMinParallelItems)
   for (int i = 0; i < n; ++i) {
-    if (kinds[i] != NodeKind::Interior) continue;
+    if (kinds[i] != NodeKind::Interior || i % stride != 0) continue;
     std::vector<std::pair<Vec2, int>> pts;
     for (int j : adj.neighbours(i)) pts.push_back({toMetric(m[i], x[j] - x[i]), j});
     const std::vector<CellVertex> cell = voronoiCell(pts);

@@ -52,9 +52,12 @@ struct LocalTopology {
   std::span<const int> ring(int i) const { return {ids.data() + offsets[i], ids.data() + offsets[i + 1]}; }
 };
 
-/// OpenMP over nodes; the result does not depend on the thread count.
+/// OpenMP over nodes; the result does not depend on the thread count. `stride` > 1: only the
+/// nodes whose index is a multiple of it get a row (the others degree −1), a sample for the
+/// share of defects at a stride-th of the cost.
 LocalTopology localTopology(std::span<const Vec2> positions, std::span<const Metric2> metrics,
-                            std::span<const NodeKind> kinds, const AdjacencyLists& adj, double minEdge = 0.05);
+                            std::span<const NodeKind> kinds, const AdjacencyLists& adj, double minEdge = 0.05,
+                            int stride = 1);
 
 struct DefectCounts {
   long interior = 0;  ///< nodes of known degree

@@ -57,6 +57,10 @@ class DomainGeometry {
   /// result is exact whenever it is < r, and the box of a thin ellipse (anisotropy 10⁴) is
   /// ~10⁴× smaller than the disk of its long half-axis.
   double metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const;
+  /// Side of the cells of the boundary segments' bucket grid (≈ 1/2 of the mean segment
+  /// length, at least bounding box / 2000): a search radius of a few cells visits a few dozen
+  /// cells.
+  double segmentCellSize() const { return grid_.cellSize(); }
 
   /// Arc length s ∈ [0, L) of loop l (wrapped) → segment index, point, unit tangent.
   int segmentAt(int l, double s) const;

@@ -6,7 +6,10 @@
 For H = diag(1, -1) (a saddle, as every harmonic function's) and H = I: the error of
 equilateral triangles at several rotations, the best triangle found (Nelder-Mead from 30 starts),
 and for metrics of aspect sqrt(a) with axes at 45 degrees to H's eigenvectors, the spread of the
-error of their metric-equilateral triangles over the lattice angle.
+error of their metric-equilateral triangles over the lattice angle. Then the lattices the
+placement can build (mesher/initial_placement.hpp: one row along the short or the long axis):
+short-axis rows with the long axis along an eigenvector of H (best aspect 1.367: 7.3 % less
+H1^2 than equilateral), and the right isosceles long-axis lattice turned by 0-30 degrees.
 """
 import numpy as np
 from scipy.optimize import minimize
@@ -51,3 +54,18 @@ for asp2 in [1.0, 1.5, 2.0, 3.0]:
         V=(eq@Rp.T)@Lm.T
         es.append(err(V,H))
     print(f"aspect^2 {asp2}: min {min(es):.4f} max {max(es):.4f} mean {np.mean(es):.4f}")
+# The loop's lattice (mesher Adapt preset: one row along each node's short-size direction,
+# fully aligned from an aspect h1/h2 of 1.5 on): for the same saddle, the metric of aspect a with
+# its long axis along an eigenvector of H, its hexagonal lattice turned so that a row runs along
+# the short axis; and, for the long-axis lattice, the cost of a misoriented lattice.
+print("--- short-axis lattice, long axis along an eigenvector of H = diag(1,-1): error vs aspect")
+def lattice_tri(aspect, theta, phi):
+    # one triangle of the lattice M^(-1/2) Q(phi) (unit hexagonal), M of sizes sqrt(a), 1/sqrt(a)
+    R = lambda t: np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+    L = R(theta) @ np.diag([np.sqrt(aspect), 1 / np.sqrt(aspect)]) @ R(phi - theta)
+    return np.array([[0, 0], L @ [1, 0], L @ [0.5, np.sqrt(3) / 2]])
+for a in [1.0, 1.2, 1.367, 1.5, 1.7]:
+    print(f"aspect {a}: {err(lattice_tri(a, 0.0, np.pi / 2), H):.4f}")
+print("--- long-axis lattice, aspect sqrt3 at 45 degrees (the right isosceles one): error vs misorientation")
+for d in [0, 5, 10, 20, 30]:
+    print(f"{d} degrees: {err(lattice_tri(np.sqrt(3), np.pi / 4, np.pi / 4 + np.radians(d)), H):.4f}")

@@ -26,7 +26,7 @@ set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 repo=$(cd "$here/../.." && pwd)
-all="wavefront wavefront_steep peak lshape tanhlayer reentrant_5pi4 reentrant_7pi4 linesing multiple"
+all="wavefront wavefront_steep peak lshape tanhlayer reentrant_5pi4 reentrant_7pi4 slit linesing multiple"
 problem=""
 maxnv=1.2e5
 out="$repo/out/compare_freefem"
@@ -49,7 +49,7 @@ out=$(cd "$out" && pwd)
 
 # NAME -> "script.edp|FreeFem++ arguments|ablmg adapt arguments"
 spec() {
-  local w5=3.9269908169872414 w7=5.497787143782138
+  local w5=3.9269908169872414 w7=5.497787143782138 w8=6.283185307179586
   case "$1" in
     wavefront) echo "wavefront.edp||--problem wavefront" ;;
     wavefront_steep) echo "wavefront.edp|-alpha 1000|--problem wavefront --param alpha=1000" ;;
@@ -58,6 +58,7 @@ spec() {
     tanhlayer) echo "tanhlayer.edp||--problem tanhlayer" ;;
     reentrant_5pi4) echo "reentrant.edp|-omega $w5|--problem reentrant --param omega=$w5" ;;
     reentrant_7pi4) echo "reentrant.edp|-omega $w7|--problem reentrant --param omega=$w7" ;;
+    slit) echo "slit.edp||--problem reentrant --param omega=$w8" ;;
     linesing) echo "linesing.edp||--problem linesing" ;;
     multiple) echo "multiple.edp||--problem multiple" ;;
     *) echo "run.sh: unknown problem '$1' (valid: $all, all)" >&2; return 1 ;;

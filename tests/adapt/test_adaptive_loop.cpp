@@ -7,6 +7,7 @@
 #include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -142,7 +143,7 @@ TEST(AdaptiveLoop, GeometricScheduleEndsAtNWithPassesBelowTheThreshold) {
 TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   // Two passes per size: the fit takes one point per size (the second pass), so its window is
   // the number of sizes (capped at 4), and the rates are those of a convergent loop.
-  AdaptOptions o;
+  AdaptOptions o;  // every pass runs (repeatMinChange 0)
   ScheduleOptions s;
   s.startVertices = 300;
   s.passes = 2;
@@ -151,6 +152,46 @@ TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   ASSERT_EQ(r.cycles.size(), 6u);
   EXPECT_EQ(r.rateWindow, 3);
   EXPECT_LT(r.l2Rate, -0.8);
+  EXPECT_LT(r.h1Rate, -0.4);
+}
+
+TEST(AdaptiveLoop, MetricChangeIsTheLargestLogChangeOfAUnitEdge) {
+  const std::vector<Metric2> a{Metric2::isotropic(1), Metric2::fromSizes(2, 0.5, 0.3)};
+  EXPECT_NEAR(metricChange(a, a), 0, 1e-12);
+  // Every size halved: the metric ×4, unit edges twice as long in it.
+  const std::vector<Metric2> b{Metric2::isotropic(0.5), Metric2::fromSizes(1, 0.25, 0.3)};
+  EXPECT_NEAR(metricChange(a, b), std::log(2.0), 1e-12);
+  // One size of two changed (by 8 and by 1/2): the mean of ln 8 and ln 2.
+  const std::vector<Metric2> c{Metric2::fromSizes(1, 0.125, 0.0), Metric2::fromSizes(4, 0.5, 0.3)};
+  EXPECT_NEAR(metricChange(a, c), 0.5 * (std::log(8.0) + std::log(2.0)), 1e-12);
+  EXPECT_NEAR(metricChange(c, a), metricChange(a, c), 1e-12);
+  EXPECT_THROW(metricChange(a, std::vector<Metric2>(1, Metric2::isotropic(1))), InputError);
+}
+
+TEST(AdaptiveLoop, RepeatedPassesStopOnceTheMetricSettles) {
+  // Three passes per size on the L-shape: once the metric recovered on a mesh is within
+  // repeatMinChange of the one it was built for, the next cycle is the next size; while it is
+  // not, the pass repeats. The final size keeps all its passes, and the errors fall with N.
+  AdaptOptions o;
+  o.repeatMinChange = 0.06;
+  o.targetVertices = geometricSchedule(1600, {.startVertices = 200});  // 200, 400, 800 ×3, 1600 ×3
+  const AdaptReport r = runAdaptiveLoop(fem::makeProblem("lshape"), o);
+  ASSERT_LT(r.cycles.size(), o.targetVertices.size());
+  EXPECT_EQ(r.cycles.back().targetVertices, 1600);
+  auto count = [](const auto& v, auto pred) { return std::count_if(v.begin(), v.end(), pred); };
+  for (std::size_t k = 0; k + 1 < r.cycles.size(); ++k) {
+    const CycleReport& c = r.cycles[k];
+    ASSERT_TRUE(std::isfinite(c.metricChange));
+    const auto same = [&](double n) { return n == c.targetVertices; };
+    const auto sameCycle = [&](const CycleReport& x) { return x.targetVertices == c.targetVertices; };
+    if (c.targetVertices == o.targetVertices.back()) continue;  // the final size's passes all run
+    if (r.cycles[k + 1].targetVertices == c.targetVertices) {
+      EXPECT_GE(c.metricChange, o.repeatMinChange) << "cycle " << k << " repeated a settled pass";
+    } else if (count(r.cycles, sameCycle) < count(o.targetVertices, same)) {
+      EXPECT_LT(c.metricChange, o.repeatMinChange) << "cycle " << k << " skipped passes before settling";
+    }
+  }
+  EXPECT_TRUE(r.errorsDecrease);
   EXPECT_LT(r.h1Rate, -0.4);
 }
 

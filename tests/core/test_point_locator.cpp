@@ -145,6 +145,32 @@ TEST(BackgroundMetricField, SqrtDeterminantsMatchTheInterpolatedTensor) {
   for (std::size_t k = 0; k < q.size(); ++k) EXPECT_DOUBLE_EQ(a[k], std::sqrt(f.at(q[k]).det()));
 }
 
+TEST(BackgroundMetricField, HintedEvaluationIsTheSameOneAtATimeAndInParallelChunks) {
+  // 3000 shuffled points (12 chunks, evaluated in parallel) against one call per point (the
+  // serial path of the lattice and the post-pass), each equal to at(): bit for bit.
+  const Mesh2 m = grid(12, 9);
+  std::vector<Metric2> ms;
+  for (const auto& v : m.vertices) ms.push_back(Metric2::fromSizes(0.2 * std::exp(v.x()), 0.02 + 0.05 * v.y(), v.x()));
+  const BackgroundMetricField field(m, ms);
+  std::vector<Vec2> pts;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 100; ++i) pts.push_back({(i + 0.5) / 100, (j + 0.5) / 30});
+  std::shuffle(pts.begin(), pts.end(), std::mt19937_64(11));
+  std::vector<Metric2> all(pts.size());
+  std::vector<int> hints(pts.size(), -1);
+  field.evaluate(pts, all, hints);
+  int hint = -1;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    Metric2 one;
+    field.evaluate(std::span<const Vec2>(&pts[k], 1), std::span<Metric2>(&one, 1), std::span<int>(&hint, 1));
+    const Metric2 ref = field.at(pts[k]);
+    EXPECT_EQ(one.m11(), ref.m11()) << k;
+    EXPECT_EQ(one.m12(), ref.m12()) << k;
+    EXPECT_EQ(all[k].m22(), ref.m22()) << k;
+    EXPECT_GE(hints[k], 0);
+  }
+}
+
 TEST(AnalyticMetricField, EvaluatesAndReportsErrors) {
   AnalyticMetricField f(AnalyticMetricField::Form::Sizes, "0.15*abs(sqrt(x^2+y^2)-6)+0.2",
                         "0.5*(0.15*abs(sqrt(x^2+y^2)-6)+0.2)", "0");

@@ -29,6 +29,23 @@ Cloud randomCloud(int n, std::uint64_t seed) {
   return c;
 }
 
+/// A boundary layer: sizes 10⁻³ × 1 across y = 0.5 (anisotropy 10³) growing to isotropic
+/// 0.05 away from it, nodes at the density the metric asks for in the band, sparse outside;
+/// the sizes change fast across the band, so a pair's two boxes differ by orders of magnitude.
+Cloud layerCloud(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  Cloud c;
+  for (int i = 0; i < n; ++i) {
+    const bool band = i % 5 != 0;
+    const Vec2 p(u(rng), band ? 0.5 + 0.004 * (u(rng) - 0.5) : u(rng));
+    const double d = std::min(1.0, std::abs(p.y() - 0.5) / 0.01);
+    c.x.push_back(p);
+    c.m.push_back(Metric2::fromSizes(0.02 + 0.03 * d, 1e-3 + 0.049 * d, 0.0));
+  }
+  return c;
+}
+
 std::vector<std::vector<int>> brute(const Cloud& c, double r) {
   std::vector<std::vector<int>> rows(c.x.size());
   for (int i = 0; i < int(c.x.size()); ++i)
@@ -171,6 +188,40 @@ TEST(Adjacency, PatchAfterDeletionsAndInsertionsEqualsRebuild) {
     d.x.push_back(extra.x[k]);
     d.m.push_back(extra.m[k]);
   }
+  const AdjacencyLists p = patchAdjacency(a, map, firstNew, d.x, d.m, 1.7);
+  const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
+  EXPECT_TRUE(p.isSymmetric());
+  EXPECT_EQ(p.offsets, b.offsets);
+  EXPECT_EQ(p.ids, b.ids);
+}
+
+// The 2-d tree's case: in the band a bucket grid of the mean spacing held hundreds of nodes
+// per cell. Build and patch still give exactly the pairs within the radius, both ways (a pair
+// is in one of its two nodes' boxes only, when their sizes differ 50×).
+TEST(Adjacency, BuildAndPatchEqualBruteForceInAStretchedLayer) {
+  const Cloud c = layerCloud(2500, 5);
+  const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
+  EXPECT_TRUE(a.isSymmetric());
+  const auto want = brute(c, 1.7);
+  long total = 0;
+  for (int i = 0; i < a.size(); ++i) {
+    const auto row = a.neighbours(i);
+    EXPECT_EQ(std::vector<int>(row.begin(), row.end()), want[i]) << i;
+    total += long(row.size());
+  }
+  EXPECT_GT(total, 5 * 2500);
+  std::vector<int> map(c.x.size(), -1);
+  Cloud d;
+  for (int i = 0; i < int(c.x.size()); ++i)
+    if (i % 9 != 4) {
+      map[i] = int(d.x.size());
+      d.x.push_back(c.x[i]);
+      d.m.push_back(c.m[i]);
+    }
+  const int firstNew = int(d.x.size());
+  const Cloud extra = layerCloud(300, 6);
+  d.x.insert(d.x.end(), extra.x.begin(), extra.x.end());
+  d.m.insert(d.m.end(), extra.m.begin(), extra.m.end());
   const AdjacencyLists p = patchAdjacency(a, map, firstNew, d.x, d.m, 1.7);
   const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
   EXPECT_TRUE(p.isSymmetric());

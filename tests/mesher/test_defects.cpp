@@ -67,6 +67,36 @@ TEST(LocalTopology, PushedEdgeMakesAQuadrupoleOfTwoFivesAndTwoSevens) {
   EXPECT_FALSE(near[at(6, 0, -3)]);  // three rows away
 }
 
+TEST(LocalTopology, StrideSampleHasTheFullRowsOfItsNodesOnly) {
+  // The quadrupole of the test above, sampled every 3rd node: each sampled node has its full
+  // row, every other node none; the sample sees the defects that fall on it.
+  Patch p = hexPatch(6, Metric2::isotropic(1.0));
+  const int i = at(6, 0, 0), j = at(6, 0, 1), c = at(6, 1, 0), d = at(6, -1, 1);
+  p.x[i].x() -= 0.2;
+  p.x[j].x() += 0.2;
+  p.x[c].y() -= 0.25;
+  p.x[d].y() += 0.25;
+  const AdjacencyLists adj = buildAdjacency(p.x, p.m, 1.7);
+  const LocalTopology full = localTopology(p.x, p.m, p.kinds, adj);
+  const LocalTopology some = localTopology(p.x, p.m, p.kinds, adj, 0.05, 3);
+  long sampledDefects = 0, sampledKnown = 0;
+  for (int n = 0; n < int(p.x.size()); ++n) {
+    if (n % 3 != 0) {
+      EXPECT_EQ(some.degree[n], -1);
+      EXPECT_TRUE(some.ring(n).empty());
+      continue;
+    }
+    EXPECT_EQ(some.degree[n], full.degree[n]);
+    ASSERT_EQ(some.ring(n).size(), full.ring(n).size());
+    EXPECT_TRUE(std::equal(some.ring(n).begin(), some.ring(n).end(), full.ring(n).begin()));
+    sampledDefects += full.degree[n] >= 0 && full.degree[n] != 6;
+    sampledKnown += full.degree[n] >= 0;
+  }
+  EXPECT_EQ(sampledDefects, 2);  // i and d
+  EXPECT_EQ(countDefects(some).total(), sampledDefects);
+  EXPECT_EQ(countDefects(some).interior, sampledKnown);
+}
+
 TEST(LocalTopology, AnisotropicLatticeIsReadInItsMetric) {
   // The affine image of the unit lattice under M^{-1/2} (h1 = 0.4 along 30°, h2 = 0.1) is
   // hexagonal in M: every interior node has degree 6.

@@ -1,0 +1,47 @@
+#include "ablmg/core/point_box_tree.hpp"
+
+#include <algorithm>
+
+namespace ablmg {
+
+PointBoxTree::PointBoxTree(std::span<const Vec2> points) {
+  const int n = int(points.size());
+  if (n == 0) return;
+  std::vector<Entry> e(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) e[std::size_t(i)] = {points[std::size_t(i)], i};
+  nodes_.reserve(std::size_t(4 * (n / kLeafSize + 1)));
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
+  build(e, 0, n, 0);
+  ids_.resize(std::size_t(n));
+  pts_.resize(std::size_t(n));
+  for (int k = 0; k < n; ++k) {
+    ids_[std::size_t(k)] = e[std::size_t(k)].id;
+    pts_[std::size_t(k)] = e[std::size_t(k)].p;
+  }
+}
+
+/// Fills node `index` (already allocated) for e[begin, end): its box, and above kLeafSize
+/// points the median split along the box's longer side (ties by id, so the tree is the same
+/// for any correct std::nth_element).
+void PointBoxTree::build(std::vector<Entry>& e, int begin, int end, int index) {
+  Vec2 lo = e[std::size_t(begin)].p, hi = lo;
+  for (int k = begin + 1; k < end; ++k) {
+    lo = lo.cwiseMin(e[std::size_t(k)].p);
+    hi = hi.cwiseMax(e[std::size_t(k)].p);
+  }
+  nodes_[std::size_t(index)] = {lo, hi, begin, end, -1};
+  if (end - begin <= kLeafSize) return;
+  const int axis = hi.x() - lo.x() >= hi.y() - lo.y() ? 0 : 1;
+  const int mid = begin + (end - begin) / 2;
+  std::nth_element(e.begin() + begin, e.begin() + mid, e.begin() + end, [axis](const Entry& a, const Entry& b) {
+    return a.p[axis] < b.p[axis] || (a.p[axis] == b.p[axis] && a.id < b.id);
+  });
+  const int left = int(nodes_.size());
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
+  nodes_[std::size_t(index)].left = left;
+  build(e, begin, mid, left);
+  build(e, mid, end, left + 1);
+}
+
+}  // namespace ablmg
