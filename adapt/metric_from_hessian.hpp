@@ -112,12 +112,14 @@ struct MetricOptions {
   /// triangle of C at σ = 1 in the lattice whose rows run along C's long axis
   /// (mesher::LatticeOrientation::LongAxis), and costs +4.5 % at 5° misorientation, +44 % at
   /// 30° (the short-axis lattice's). Measured on the L-shape (`ablmg adapt --problem lshape
-  /// --vertices 16000 --saddle-shape 0.5 --lattice long`): H1 −4.2 %, L2 −6.8 % at 1.6·10⁴
-  /// vertices; with the short-axis lattice +7 % H1. Against FreeFem++ (5π/4, N ≈ 3.2·10⁴,
-  /// worst ratios over the cycles ≥ 5·10³): L2 / H1 0.83/0.95 → 0.78/0.91. Off by default: the
-  /// long-axis lattice costs the other problems (wave front 0.77/0.84 → 1.28/1.06, peak
-  /// 0.66/0.91 → 0.96/1.04), and the lattice orientation is one choice for the whole mesh
-  /// (docs/limitations.md, "Corner problems").
+  /// --vertices 16000 --saddle-shape 1 --lattice long`): H1 −6.4 %, L2 −8.6 % at 1.6·10⁴
+  /// vertices (σ 0.5: −4.2 %, −6.8 %; with the short-axis lattice +7 % H1). Against FreeFem++
+  /// (examples/compare_freefem, N ≈ 3.2·10⁴, worst ratios over the cycles ≥ 5·10³), L2 / H1:
+  /// L-shape 0.85/0.96 → 0.78/0.90, 5π/4 0.83/0.95 → 0.79/0.90 (σ 0.5: 0.78/0.91), slit
+  /// 0.88/0.97 → 0.83/0.93 (σ 0.5). Off by default: the long-axis lattice costs the other
+  /// problems (σ 0.5: wave front 0.77/0.84 → 1.28/1.06, peak 0.66/0.91 → 0.96/1.04), and the
+  /// lattice orientation is one choice for the whole mesh (docs/limitations.md, "Corner
+  /// problems").
   double saddleShape = 0;
   double hmin = 0;                                        ///< smallest size (coordinate units), ≥ 0
   double hmax = std::numeric_limits<double>::infinity();  ///< largest size, > hmin
