@@ -6,6 +6,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace ablmg::adapt {
 
@@ -29,6 +30,8 @@ void validate(const MetricOptions& o) {
   ABLMG_REQUIRE(o.norm == ErrorNorm::L2 || o.norm == ErrorNorm::H1, "metric options: unknown norm " << int(o.norm));
   ABLMG_REQUIRE(!o.shapeBlend || (*o.shapeBlend >= 0 && *o.shapeBlend <= 1),
                 "metric options: shapeBlend must be in [0, 1] (got " << o.shapeBlend.value_or(0) << ")");
+  ABLMG_REQUIRE(o.saddleShape >= 0 && o.saddleShape <= 1,
+                "metric options: saddleShape must be in [0, 1] (got " << o.saddleShape << ")");
   ABLMG_REQUIRE(o.hmaxUniform > 0, "metric options: hmaxUniform must be > 0 or inf (got " << o.hmaxUniform << ")");
   ABLMG_REQUIRE(o.eigenFloor > 0 && o.eigenFloor < 1,
                 "metric options: eigenFloor must be in (0, 1) (got " << o.eigenFloor << ")");
@@ -40,6 +43,26 @@ Hessian2 absoluteHessian(const Hessian2& h, double floor) {
   Eigen::Vector2d l = es.eigenvalues().cwiseAbs();
   l = l.cwiseMax(floor);
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+}
+
+Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> hs;
+  hs.computeDirect(h);
+  const Eigen::Vector2d e = hs.eigenvalues();  // ascending
+  if (!(e[0] < 0 && e[1] > 0)) return s;       // definite or rank one: unchanged
+  // r = −(smaller |λ|)/(larger |λ|) ∈ [−1, 0): −1 harmonic; the weight vanishes at rank one.
+  const double r = -std::min(-e[0], e[1]) / std::max(-e[0], e[1]);
+  const double f = std::pow(3.0, 0.25 * sigma * std::clamp(-4 * r, 0.0, 1.0));  // √(aspect)
+  const Eigen::Vector2d pos = hs.eigenvectors().col(1);
+  const double angle = std::atan2(pos.y(), pos.x()) + std::numbers::pi / 4;  // long axis
+  Eigen::Matrix2d rot;
+  rot << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  const Eigen::Matrix2d c = rot * Eigen::Vector2d(1 / (f * f), f * f).asDiagonal() * rot.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> ss;
+  ss.computeDirect(s);
+  const Eigen::Matrix2d root =
+      ss.eigenvectors() * ss.eigenvalues().cwiseSqrt().asDiagonal() * ss.eigenvectors().transpose();
+  return root * c * root;
 }
 
 double complexityForVertices(double vertices) { return 0.5 * std::sqrt(3.0) * vertices; }
@@ -119,6 +142,7 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
     if (s == 1 && !h1) {  // the Lp metric, computed exactly as before the H1 option (bitwise same meshes)
       shape[v] = (pInf ? 1.0 : std::pow(a.determinant(), -1.0 / (2 * o.p + 2))) * a;
       sqrtDet[v] = std::sqrt(shape[v].determinant());
+      if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape);
       continue;
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
@@ -128,6 +152,7 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
     const Eigen::Vector2d m(rho * std::pow(l[0] / root, s), rho * std::pow(l[1] / root, s));
     shape[v] = es.eigenvectors() * m.asDiagonal() * es.eigenvectors().transpose();
     sqrtDet[v] = std::sqrt(m[0] * m[1]);
+    if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape);
   }
   const double target = complexityForVertices(o.targetVertices);
   const double hmax = effectiveHmax(mesh, o);

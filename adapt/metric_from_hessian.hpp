@@ -102,7 +102,26 @@ struct MetricOptions {
   double p = 2;                      ///< the exponent p of the norm (Lp or W^{1,p}), ≥ 1 or infinity()
   ErrorNorm norm = ErrorNorm::L2;    ///< which error the metric is optimal for
   std::optional<double> shapeBlend;  ///< w ∈ [0, 1]: shape (|H|/√det|H|)^(1+w); empty = the norm's own (L2: 0, H1: 1)
-  double hmin = 0;                   ///< smallest size (coordinate units), ≥ 0
+  /// σ ∈ [0, 1] (0: off): on indefinite Hessians the shape S becomes S^½ C S^½ (det kept),
+  /// C of aspect 3^(σw/2) with its long axis at 45° to H's eigenvectors, w = min(1, −4r), r =
+  /// −(smaller |λ|)/(larger |λ|) (−1 on a harmonic saddle, 0 at rank one, where the weight
+  /// vanishes and the metric stays continuous). Why: for a saddle q = ½(x² − y²) the P1
+  /// triangle of least H1 interpolation error per area is right isosceles with its legs along
+  /// the eigenvectors, 0.866× an equilateral triangle's H1² (Mirebeau's shape analysis for
+  /// W^{1,p}, Numer. Math. 2012; scripts/saddle_triangle_shape.py); it is the metric-equilateral
+  /// triangle of C at σ = 1 in the lattice whose rows run along C's long axis
+  /// (mesher::LatticeOrientation::LongAxis), and costs +4.5 % at 5° misorientation, +44 % at
+  /// 30° (the short-axis lattice's). Measured on the L-shape (`ablmg adapt --problem lshape
+  /// --vertices 16000 --saddle-shape 1 --lattice long`): H1 −6.4 %, L2 −8.6 % at 1.6·10⁴
+  /// vertices (σ 0.5: −4.2 %, −6.8 %; with the short-axis lattice +7 % H1). Against FreeFem++
+  /// (examples/compare_freefem, N ≈ 3.2·10⁴, worst ratios over the cycles ≥ 5·10³), L2 / H1:
+  /// L-shape 0.85/0.96 → 0.78/0.90, 5π/4 0.83/0.95 → 0.79/0.90 (σ 0.5: 0.78/0.91), slit
+  /// 0.88/0.97 → 0.83/0.93 (σ 0.5). Off by default: the long-axis lattice costs the other
+  /// problems (σ 0.5: wave front 0.77/0.84 → 1.28/1.06, peak 0.66/0.91 → 0.96/1.04), and the
+  /// lattice orientation is one choice for the whole mesh (docs/limitations.md, "Corner
+  /// problems").
+  double saddleShape = 0;
+  double hmin = 0;                                        ///< smallest size (coordinate units), ≥ 0
   double hmax = std::numeric_limits<double>::infinity();  ///< largest size, > hmin
   double maxAnisotropy = 1e4;                             ///< largest h1/h2 (≥ 1)
   /// κ (> 0): largest size as a multiple of the uniform size for N vertices, h ≤ κ h_N with
@@ -110,6 +129,10 @@ struct MetricOptions {
   double hmaxUniform = std::numeric_limits<double>::infinity();
   double eigenFloor = 1e-10;  ///< relative floor on |λ(H)| (> 0)
 };
+
+/// The saddle correction of MetricOptions::saddleShape applied to the shape `s` of Hessian `h`
+/// (unchanged where h is not indefinite); det S^½ C S^½ = det S.
+Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma);
 
 /// Throws InputError naming the option and value if out of range.
 void validate(const MetricOptions& options);

@@ -157,6 +157,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
     } else if (key == "--warm-start") {
       a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
+    } else if (key == "--saddle-shape") {
+      const double v = parseNumber(value(), "adapt: --saddle-shape");
+      ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --saddle-shape must be in [0, 1], got " << v);
+      a.options.metric.saddleShape = v;
     } else if (key == "--repeat-min-change") {
       const double c = parseNumber(value(), "adapt: --repeat-min-change");
       ABLMG_REQUIRE(c >= 0 && c <= 10, "adapt: --repeat-min-change must be in [0, 10], got " << c);
@@ -190,7 +194,7 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --hmax-uniform --l2-share --max-aniso --seed --stop-l2 --stop-h1 "
-                           "--warm-start --lattice --repeat-min-change "
+                           "--warm-start --lattice --saddle-shape --repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
@@ -301,6 +305,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"l2_share", a.options.l2Share},
           {"warm_start", a.options.warmStart},
           {"repeat_min_change", a.options.repeatMinChange},
+          {"saddle_shape", a.options.metric.saddleShape},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
           {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
           {"seed", a.options.mesh.placement.seed}};
@@ -313,7 +318,8 @@ const char* kAdaptHelp =
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--max-aniso R] [--seed S]
                    [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
-                   [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR] [-v N]
+                   [--saddle-shape S] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off]
+                   [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
 
 The adaptive loop (solve -> errors -> Hessian recovery -> metric -> remesh) on a problem of
@@ -332,6 +338,8 @@ each size below N1 (default 10000); --target-vertices: cycle k targets N_k verti
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
+--saddle-shape S: on indefinite Hessians a shape of aspect up to 3^(S/2) at 45 degrees to the
+eigenvectors (off by default; pays with --lattice long only; adapt/metric_from_hessian.hpp).
 --repeat-min-change C: a size's remaining passes are skipped after a cycle whose next metric
 differs from the one its mesh was built for by less than C (dM= in the cycle lines: the mean
 largest log change of a unit edge's length; 0 = run every pass; adapt/adaptive_loop.hpp).

@@ -21,6 +21,7 @@
 #include "ablmg/core/vec2.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ablmg {
@@ -35,6 +36,14 @@ struct BoundaryLoop {
   /// Per segment (empty = none): kept as one mesh edge, its end points corners, no node placed
   /// inside it (a required edge, a piece of an interface discretized for both its sides).
   std::vector<char> keptSegments;
+
+  /// A polygonal loop (not smooth, no fixed points, no kept segments); empty tags = all 1.
+  static BoundaryLoop polygon(std::vector<Vec2> points, std::vector<int> tags = {}) {
+    BoundaryLoop loop;
+    loop.points = std::move(points);
+    loop.tags = std::move(tags);
+    return loop;
+  }
 };
 
 class Domain {

@@ -4,19 +4,22 @@
 
 namespace ablmg {
 
-PointBoxTree::PointBoxTree(std::span<const Vec2> points) {
+PointBoxTree::PointBoxTree(std::span<const Vec2> points, std::span<const double> weights) {
   const int n = int(points.size());
   if (n == 0) return;
   std::vector<Entry> e(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) e[std::size_t(i)] = {points[std::size_t(i)], i};
+  for (int i = 0; i < n; ++i)
+    e[std::size_t(i)] = {points[std::size_t(i)], weights.empty() ? 0.0 : weights[std::size_t(i)], i};
   nodes_.reserve(std::size_t(4 * (n / kLeafSize + 1)));
-  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, 0, 0, -1});
   build(e, 0, n, 0);
   ids_.resize(std::size_t(n));
   pts_.resize(std::size_t(n));
+  w_.resize(std::size_t(n));
   for (int k = 0; k < n; ++k) {
     ids_[std::size_t(k)] = e[std::size_t(k)].id;
     pts_[std::size_t(k)] = e[std::size_t(k)].p;
+    w_[std::size_t(k)] = e[std::size_t(k)].w;
   }
 }
 
@@ -25,11 +28,14 @@ PointBoxTree::PointBoxTree(std::span<const Vec2> points) {
 /// for any correct std::nth_element).
 void PointBoxTree::build(std::vector<Entry>& e, int begin, int end, int index) {
   Vec2 lo = e[std::size_t(begin)].p, hi = lo;
+  double wlo = e[std::size_t(begin)].w, whi = wlo;
   for (int k = begin + 1; k < end; ++k) {
     lo = lo.cwiseMin(e[std::size_t(k)].p);
     hi = hi.cwiseMax(e[std::size_t(k)].p);
+    wlo = std::min(wlo, e[std::size_t(k)].w);
+    whi = std::max(whi, e[std::size_t(k)].w);
   }
-  nodes_[std::size_t(index)] = {lo, hi, begin, end, -1};
+  nodes_[std::size_t(index)] = {lo, hi, wlo, whi, begin, end, -1};
   if (end - begin <= kLeafSize) return;
   const int axis = hi.x() - lo.x() >= hi.y() - lo.y() ? 0 : 1;
   const int mid = begin + (end - begin) / 2;
@@ -37,8 +43,8 @@ void PointBoxTree::build(std::vector<Entry>& e, int begin, int end, int index) {
     return a.p[axis] < b.p[axis] || (a.p[axis] == b.p[axis] && a.id < b.id);
   });
   const int left = int(nodes_.size());
-  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
-  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, -1});
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, 0, 0, -1});
+  nodes_.push_back(Node{Vec2::Zero(), Vec2::Zero(), 0, 0, 0, 0, -1});
   nodes_[std::size_t(index)].left = left;
   build(e, begin, mid, left);
   build(e, mid, end, left + 1);

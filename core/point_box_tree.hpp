@@ -13,6 +13,7 @@
 #include "ablmg/core/vec2.hpp"
 
 #include <array>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -23,8 +24,9 @@ class PointBoxTree {
   static constexpr int kLeafSize = 8;
 
   PointBoxTree() = default;
-  /// The tree of `points` (any number, duplicates allowed; id = index).
-  explicit PointBoxTree(std::span<const Vec2> points);
+  /// The tree of `points` (any number, duplicates allowed; id = index), with one weight per
+  /// point if `weights` is not empty (see forEachInBoxFrom).
+  explicit PointBoxTree(std::span<const Vec2> points, std::span<const double> weights = {});
 
   int size() const { return int(ids_.size()); }
 
@@ -32,6 +34,13 @@ class PointBoxTree {
   /// box; rx, ry ≥ 0), in an order fixed by the tree (not ascending ids).
   template <class F>
   void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
+    forEachInBoxFrom(p, rx, ry, -std::numeric_limits<double>::infinity(), f);
+  }
+  /// The same for the points of weight ≥ wmin only (weights given to the constructor): a
+  /// subtree whose weights are all below wmin is skipped whole, so a wide box over a dense
+  /// cluster of light points costs O(log n) when they are not wanted.
+  template <class F>
+  void forEachInBoxFrom(const Vec2& p, double rx, double ry, double wmin, F&& f) const {
     if (nodes_.empty()) return;
     const double x0 = p.x() - rx, x1 = p.x() + rx, y0 = p.y() - ry, y1 = p.y() + ry;
     std::array<int, 64> stack;
@@ -39,14 +48,15 @@ class PointBoxTree {
     stack[top++] = 0;
     while (top > 0) {
       const Node& nd = nodes_[std::size_t(stack[--top])];
-      if (nd.hi.x() < x0 || nd.lo.x() > x1 || nd.hi.y() < y0 || nd.lo.y() > y1) continue;
+      if (nd.wmax < wmin || nd.hi.x() < x0 || nd.lo.x() > x1 || nd.hi.y() < y0 || nd.lo.y() > y1) continue;
       const bool all = nd.lo.x() >= x0 && nd.hi.x() <= x1 && nd.lo.y() >= y0 && nd.hi.y() <= y1;
-      if (all) {
+      if (all && nd.wmin >= wmin) {
         for (int k = nd.begin; k < nd.end; ++k) f(ids_[std::size_t(k)]);
       } else if (nd.left < 0) {
         for (int k = nd.begin; k < nd.end; ++k) {
           const Vec2& q = pts_[std::size_t(k)];
-          if (q.x() >= x0 && q.x() <= x1 && q.y() >= y0 && q.y() <= y1) f(ids_[std::size_t(k)]);
+          if (q.x() >= x0 && q.x() <= x1 && q.y() >= y0 && q.y() <= y1 && w_[std::size_t(k)] >= wmin)
+            f(ids_[std::size_t(k)]);
         }
       } else {
         stack[top++] = nd.left + 1;
@@ -56,14 +66,16 @@ class PointBoxTree {
   }
 
  private:
-  /// A node covers pts_[begin, end) with bounding box [lo, hi]; inner nodes have children
-  /// left and left + 1 (left < 0: a leaf).
+  /// A node covers pts_[begin, end) with bounding box [lo, hi] and weights in [wmin, wmax];
+  /// inner nodes have children left and left + 1 (left < 0: a leaf).
   struct Node {
     Vec2 lo, hi;
+    double wmin, wmax;
     int begin, end, left;
   };
   struct Entry {
     Vec2 p;
+    double w;
     int id;
   };
   void build(std::vector<Entry>& e, int begin, int end, int index);
@@ -71,6 +83,7 @@ class PointBoxTree {
   std::vector<Node> nodes_;
   std::vector<int> ids_;   ///< point ids in tree order
   std::vector<Vec2> pts_;  ///< the points in tree order (pts_[k] = points[ids_[k]])
+  std::vector<double> w_;  ///< their weights (0 without weights)
 };
 
 }  // namespace ablmg

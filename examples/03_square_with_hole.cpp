@@ -95,7 +95,7 @@ int main(int argc, char** argv) try {
   std::printf("Options: --scale %g --out %s --seed %llu\n", opt.scale, opt.out.c_str(), (unsigned long long)opt.seed);
 
   // 1. Loops: outer square (counter-clockwise, one tag per segment), circle, square hole.
-  BoundaryLoop outer{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {1, 2, 3, 4}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {1, 2, 3, 4});
   BoundaryLoop circle;
   const int samples = 256;
   for (int k = 0; k < samples; ++k) {
@@ -104,7 +104,7 @@ int main(int argc, char** argv) try {
   }
   circle.tags.assign(samples, 5);
   circle.smooth = true;
-  BoundaryLoop box{{{0.55, 0.55}, {0.8, 0.55}, {0.8, 0.8}, {0.55, 0.8}}, {6, 6, 6, 6}, false};
+  const BoundaryLoop box = BoundaryLoop::polygon({{0.55, 0.55}, {0.8, 0.55}, {0.8, 0.8}, {0.55, 0.8}}, {6, 6, 6, 6});
   const Domain domain(outer, {circle, box});
   std::printf("Domain: %zu loops, area %.6f (exact %.6f for the 256-gon)\n", domain.loops().size(), domain.area(),
               4 - 0.5 * samples * kHoleRadius * kHoleRadius * std::sin(2 * std::numbers::pi / samples) - 0.0625);

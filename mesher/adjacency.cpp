@@ -24,6 +24,24 @@ constexpr int kMinParallelRows = 128;
 /// of the lengths falls the wrong way at its edge (the tree reports only points in the box).
 Vec2 searchBox(const Metric2& m, double radius) { return reachBox(m, radius) * (1 + 1e-9); }
 
+/// Box area of each node's reach box at radius 1: the weight that decides which node of a pair
+/// searches for it (the one with the smaller box; ties by the smaller id).
+std::vector<double> boxWeights(std::span<const Metric2> m) {
+  std::vector<double> w(m.size());
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const Vec2 R = reachBox(m[i], 1.0);
+    w[i] = R.x() * R.y();
+  }
+  return w;
+}
+
+/// A pair within the radius has |d|²_{M_i} and |d|²_{M_j} both ≤ 2·radius² (their mean is ≤
+/// radius²), so it lies in the √2·radius box of either node: it is searched from one of them
+/// only, the lighter (boxWeights), in a tree that skips lighter nodes whole. A coarse bubble
+/// beside a boundary layer then never enumerates the layer's nodes in its wide box (a third of
+/// a layer remesh's adjacency builds went there).
+constexpr double kPairSearch = 1.4142135623730951;
+
 /// CSR from a row function without per-row allocations: rows are produced in contiguous
 /// blocks, one per thread, into per-thread buffers, then concatenated in row order (the result
 /// does not depend on the thread count). rowFn(i, out) appends row i to out.
@@ -62,12 +80,14 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   if (n == 0) return {};
-  const PointBoxTree tree(x);
+  const std::vector<double> w = boxWeights(m);
+  const PointBoxTree tree(x, w);
+  // Each pair once, from its lighter node (kPairSearch); the transpose below adds the other way.
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
-    const Vec2 R = searchBox(m[i], radius);
+    const Vec2 R = searchBox(m[i], kPairSearch * radius);
     const std::size_t start = out.size();
-    tree.forEachInBox(x[i], R.x(), R.y(), [&](int j) {
-      if (j != i && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
+    tree.forEachInBoxFrom(x[i], R.x(), R.y(), w[i], [&](int j) {
+      if ((w[j] > w[i] || j > i) && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
     });
     std::sort(out.begin() + std::ptrdiff_t(start), out.end());
   });
@@ -367,50 +387,60 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   });
 }
 
+namespace {
+
+/// The pairs within the radius that have a new bubble (id ≥ firstNew), as (row, partner) in
+/// both directions, sorted. Each pair is searched from its lighter node (kPairSearch): a new
+/// bubble searches a tree of all bubbles, an old one a tree of the new ones.
+std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2> x, std::span<const Metric2> m,
+                                              double radius) {
+  const int n = int(x.size());
+  std::vector<std::pair<int, int>> pairs;
+  if (firstNew >= n) return pairs;
+  const std::vector<double> w = boxWeights(m);
+  const PointBoxTree all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
+  std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
+  ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
+#pragma omp parallel if (n >= kMinParallelItems)
+  {
+    auto& out = found[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static) nowait
+    for (int k = firstNew; k < n; ++k)
+      failure.run(k, [&] {
+        const Vec2 R = searchBox(m[k], kPairSearch * radius);
+        all.forEachInBoxFrom(x[k], R.x(), R.y(), w[k], [&](int j) {
+          if ((w[j] > w[k] || j > k) && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
+      });
+#pragma omp for schedule(static)
+    for (int j = 0; j < firstNew; ++j)
+      failure.run(long(n) + j, [&] {  // ties go to j, the smaller id
+        const Vec2 R = searchBox(m[j], kPairSearch * radius);
+        fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[j], [&](int q) {
+          const int k = firstNew + q;
+          if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
+      });
+  }
+  failure.rethrow();
+  for (const auto& f : found)
+    for (const auto& [k, j] : f) {
+      pairs.push_back({k, j});
+      pairs.push_back({j, k});
+    }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace
+
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
                               std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   const int nOld = old.size();
-  // Pairs with a new bubble k lie in the reach box (reachBox) of k or of the partner: each new
-  // bubble searches all bubbles within its own box, and each bubble searches the new ones
-  // within its box (a tree of the new bubbles only). Local reaches: a fine bubble never scans
-  // the box a coarse one needs (a global max h1 made graded remeshes scan ~10⁴ nodes per
-  // insertion).
-  std::vector<std::pair<int, int>> pairs;  // (row, partner), both directions
-  if (firstNew < n) {
-    const PointBoxTree all(x), fresh(x.subspan(std::size_t(firstNew)));
-    std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
-    ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
-#pragma omp parallel if (n >= kMinParallelItems)
-    {
-      auto& out = found[std::size_t(omp_get_thread_num())];
-#pragma omp for schedule(static) nowait
-      for (int k = firstNew; k < n; ++k)
-        failure.run(k, [&] {
-          const Vec2 R = searchBox(m[k], radius);
-          all.forEachInBox(x[k], R.x(), R.y(), [&](int j) {
-            if (j != k && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
-          });
-        });
-#pragma omp for schedule(static)
-      for (int j = 0; j < n; ++j)
-        failure.run(long(n) + j, [&] {
-          const Vec2 R = searchBox(m[j], radius);
-          fresh.forEachInBox(x[j], R.x(), R.y(), [&](int q) {
-            const int k = firstNew + q;
-            if (k != j && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
-          });
-        });
-    }
-    failure.rethrow();
-    for (const auto& f : found)
-      for (const auto& [k, j] : f) {
-        pairs.push_back({k, j});
-        if (j < firstNew) pairs.push_back({j, k});
-      }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  }
+  // Local reaches (pairsWithNew): a fine bubble never scans the box a coarse one needs (a
+  // global max h1 made graded remeshes scan ~10⁴ nodes per insertion).
+  const std::vector<std::pair<int, int>> pairs = pairsWithNew(firstNew, x, m, radius);
   // Rows: survivors' remapped rows (the map is increasing, so they stay sorted) followed by
   // their new partners (ids ≥ firstNew, above every survivor), then the new rows.
   std::vector<int> rowOfOld(static_cast<std::size_t>(n), -1);

@@ -443,10 +443,16 @@ PlacementResult NodePlacer::output() {
   {
     ScopedTimer timer{st_.secondsAdjacency};
     sys_.updateMetrics(metric_);
-    if (sys_.maxTravelSinceRefresh() < 0.5 * (o_.adjacencyRadius - 1.5))
-      result_.adjacency = refreshAdjacency(adj_, sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
-    else
+    // In place: the dynamics' lists are not needed after this, and a copy of them was the
+    // placement's peak memory at 10⁶ triangles.
+    if (sys_.maxTravelSinceRefresh() < 0.5 * (o_.adjacencyRadius - 1.5)) {
+      refreshAdjacencyInPlace(adj_, sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+      adj_.compact();
+      result_.adjacency = std::move(adj_);
+    } else {
+      adj_ = {};
       result_.adjacency = buildAdjacency(sys_.nodes().positions, sys_.metrics(), o_.adjacencyRadius);
+    }
     // No two nodes share a point (node_set.hpp): the chains keep their boundary nodes apart by
     // construction (bubble_system.hpp); bubbles that came to rest on one point are merged here.
     std::vector<char> drop;

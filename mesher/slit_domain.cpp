@@ -79,7 +79,7 @@ std::pair<int, int> findTip(const Piece& piece) {
 struct Hit {
   int loop = -1, segment = -1;
   double u = 0;  ///< along the segment, snapped to 0 / 1 near its ends
-  Vec2 at;
+  Vec2 at = Vec2::Zero();
 };
 Hit castRay(const Piece& piece, int l, int i) {
   const auto& lp = piece[std::size_t(l)].pts;
@@ -100,7 +100,7 @@ Hit castRay(const Piece& piece, int l, int i) {
       const double s = cross(a - t, b - a) / denom, u = cross(a - t, d) / denom;
       if (s <= 1e-12 || u < -1e-12 || u > 1 + 1e-12 || s >= bestS) continue;
       bestS = s;
-      best = {int(m), int(j), u < 1e-9 ? 0.0 : u > 1 - 1e-9 ? 1.0 : u, {}};
+      best = {int(m), int(j), u < 1e-9 ? 0.0 : u > 1 - 1e-9 ? 1.0 : u, Vec2::Zero()};
     }
   }
   ABLMG_REQUIRE(best.loop >= 0, "domain: the slit tip at ("

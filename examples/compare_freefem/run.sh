@@ -131,8 +131,8 @@ done
 mkdir -p "$repo/docs/figures"
 body="$out/section.md"
 {
-  echo "| problem | N final | worst L2 ratio | worst H1 ratio | ablmg rates L2 / H1 | FreeFem rates L2 / H1 | errors fall | q mean min | time to FreeFem's H1 / its loop (s) |"
-  echo "|---|---:|---:|---:|---:|---:|---|---:|---:|"
+  echo "| problem | N final | worst L2 ratio | worst H1 ratio | ablmg rates L2 / H1 | FreeFem rates L2 / H1 | errors fall | q mean min | time to FreeFem's H1 / its loop (s) | cycle to N final (s), ablmg / FreeFem |"
+  echo "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|"
   for name in $all; do [[ -f "$out/$name/summary.md" ]] && cat "$out/$name/summary.md"; done
   echo
   for name in $all; do

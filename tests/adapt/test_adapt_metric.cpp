@@ -32,7 +32,7 @@ TEST(AdaptMetric, HitsTargetComplexityWithAndWithoutGradation) {
     EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(8000), 1.0, 0.01) << "hgrad " << hgrad;
     EXPECT_GT(a.secondsRecover, 0);
     EXPECT_GT(a.secondsMetric, 0);
-    if (hgrad <= 1) EXPECT_EQ(gs.sweeps, 0);
+    if (hgrad <= 1) { EXPECT_EQ(gs.sweeps, 0); }
     if (hgrad > 1) {
       EXPECT_TRUE(gs.converged);
       EXPECT_GT(gs.corrections, 0);

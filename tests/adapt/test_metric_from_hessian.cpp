@@ -4,6 +4,7 @@
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 #include <algorithm>
@@ -250,4 +251,33 @@ TEST(MetricFromHessian, RejectsBadOptions) {
   EXPECT_EQ(toString(parseErrorNorm("l2")), "l2");
   h.pop_back();
   EXPECT_THROW(metricFromHessians(mesh, h, MetricOptions{}), InputError);
+}
+
+TEST(MetricFromHessian, SaddleShapeMakesTheAlignedRightIsoscelesTriangleEquilateral) {
+  // H = R diag(1, −1) Rᵀ (a harmonic saddle turned by 0.3): at σ = 1 the legs R e_x, R e_y and
+  // the diagonal R (e_x + e_y) have one length in the shaped metric, det is kept, and a definite
+  // Hessian or σ = 0 leaves the shape alone.
+  const double t = 0.3, c = std::cos(t), s = std::sin(t);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  const Hessian2 h = r * Eigen::Vector2d(1, -1).asDiagonal() * r.transpose();
+  const Hessian2 shape = 4 * Hessian2::Identity();
+  const Hessian2 m = saddleShaped(h, shape, 1);
+  const Eigen::Vector2d ex = r.col(0), ey = r.col(1);
+  const double lx = ex.dot(m * ex), ly = ey.dot(m * ey), ld = (ex + ey).dot(m * (ex + ey));
+  EXPECT_NEAR(ly / lx, 1, 1e-12);
+  EXPECT_NEAR(ld / lx, 1, 1e-12);
+  EXPECT_NEAR(m.determinant(), shape.determinant(), 1e-12);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(m);
+  EXPECT_NEAR(es.eigenvalues()[1] / es.eigenvalues()[0], 3, 1e-12);  // aspect √3
+  EXPECT_NEAR((saddleShaped(h, shape, 0) - shape).norm(), 0, 1e-12);
+  const Hessian2 definite = r * Eigen::Vector2d(2, 1).asDiagonal() * r.transpose();
+  EXPECT_NEAR((saddleShaped(definite, shape, 1) - shape).norm(), 0, 1e-12);
+  // Half the weight at r = −1/8 (σ = 1): aspect 3^(1/4).
+  const Hessian2 weak = r * Eigen::Vector2d(1, -0.125).asDiagonal() * r.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> ew(saddleShaped(weak, shape, 1));
+  EXPECT_NEAR(ew.eigenvalues()[1] / ew.eigenvalues()[0], std::sqrt(3.0), 1e-12);
+  MetricOptions o;
+  o.saddleShape = 1.5;
+  EXPECT_THROW(validate(o), InputError);
 }

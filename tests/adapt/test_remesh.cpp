@@ -25,8 +25,8 @@ namespace {
 
 /// [0, 4]² (tags 1 bottom, 2 right, 3 top, 4 left) minus the hole [1, 2]² (tag 5).
 Domain squareWithHole() {
-  BoundaryLoop outer{{{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {1, 2, 3, 4}, false};
-  BoundaryLoop hole{{{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {1, 2, 3, 4});
+  const BoundaryLoop hole = BoundaryLoop::polygon({{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5});
   return Domain(std::move(outer), {std::move(hole)});
 }
 

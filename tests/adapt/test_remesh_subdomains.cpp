@@ -117,7 +117,7 @@ TEST(RemeshSubdomains, PolygonalSubdomainsKeepAreasRefsAndInterfaces) {
   expectInterfacesCovered(in, r.mesh);
   expectRefsWhereTheyWere(in, r.mesh);
   // the T junction and the interface ends on the boundary are vertices of the output
-  for (const Vec2 p : {Vec2(0.5, 0.5), Vec2(0.5, 0), Vec2(0.5, 1), Vec2(1, 0.5)}) {
+  for (const Vec2& p : {Vec2(0.5, 0.5), Vec2(0.5, 0), Vec2(0.5, 1), Vec2(1, 0.5)}) {
     bool found = false;
     for (const Vec2& v : r.mesh.vertices) found = found || v == p;
     EXPECT_TRUE(found) << p.transpose();
@@ -207,7 +207,7 @@ TEST(RemeshSubdomains, GmshThreeSurfacesWithPhysicalTags) {
   EXPECT_EQ(interfaceRefs, (std::set<int>{20, 30}));
   EXPECT_EQ(boundaryRefs, (std::set<int>{10}));
   // the junctions of the cut with the circle and the square's corners are output vertices
-  for (const Vec2 p : {Vec2(-1, 0), Vec2(1, 0), Vec2(-0.3, 0.2), Vec2(0.3, 0.2), Vec2(0.3, 0.6), Vec2(-0.3, 0.6)}) {
+  for (const Vec2& p : {Vec2(-1, 0), Vec2(1, 0), Vec2(-0.3, 0.2), Vec2(0.3, 0.2), Vec2(0.3, 0.6), Vec2(-0.3, 0.6)}) {
     bool found = false;
     for (const Vec2& v : r.mesh.vertices) found = found || (v - p).norm() < 1e-12;
     EXPECT_TRUE(found) << p.transpose();

@@ -448,8 +448,9 @@ TEST(CApi, TransferReproducesLinearFieldsAndKeepsTheIntegral) {
     ablmg_transfer_stats s{};
     ASSERT_EQ(ablmg_transfer(h.get(), old.data(), a.n, 3, method, out.data(), nNew, &s), ABLMG_OK)
         << ablmg_last_error(h.get());
-    if (method != ABLMG_TRANSFER_PROJECTION_BOUNDED)  // linear fields are reproduced
+    if (method != ABLMG_TRANSFER_PROJECTION_BOUNDED) {  // linear fields are reproduced
       for (int i = 0; i < nNew; ++i) EXPECT_NEAR(out[std::size_t(i)], exact[std::size_t(i)], 1e-12) << i;
+    }
     if (method == ABLMG_TRANSFER_INTERPOLATION) continue;
     EXPECT_NEAR(s.supermesh_area, mesh.area(), 1e-12 * mesh.area());
     EXPECT_GT(s.supermesh_pieces, nNew);

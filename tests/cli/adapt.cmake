@@ -191,6 +191,7 @@ foreach(case
     "bad_shape_blend|--problem wavefront --target-vertices 500 --shape-blend 2|shape"
     "bad_plateau_gain|--problem wavefront --target-vertices 500 --plateau-gain 1|--plateau-gain must be in \\[0, 1\\), got 1"
     "bad_repeat_min_change|--problem wavefront --vertices 1000 --repeat-min-change -1|--repeat-min-change must be in \\[0, 10\\]"
+    "bad_saddle_shape|--problem wavefront --vertices 1000 --saddle-shape 2|--saddle-shape must be in \\[0, 1\\], got 2"
     "bad_lattice|--problem wavefront --target-vertices 500 --lattice diagonal|lattice orientation: expected axes, short or long, got 'diagonal'")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)

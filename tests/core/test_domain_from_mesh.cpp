@@ -14,8 +14,8 @@ namespace {
 
 /// [0, 3]² (tags 1–4 as Domain::rectangle) minus the hole [1, 2]² (tag 5), as a structured mesh.
 Mesh2 squareWithHoleMesh() {
-  BoundaryLoop outer{{{0, 0}, {3, 0}, {3, 3}, {0, 3}}, {1, 2, 3, 4}, false};
-  BoundaryLoop hole{{{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{0, 0}, {3, 0}, {3, 3}, {0, 3}}, {1, 2, 3, 4});
+  const BoundaryLoop hole = BoundaryLoop::polygon({{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5});
   return fem::structuredMesh(Domain(std::move(outer), {std::move(hole)}), 6, 6, 0.1, 3);
 }
 

@@ -60,3 +60,33 @@ TEST(PointBoxTree, EmptyAndTinySets) {
   const PointBoxTree dup(same);
   EXPECT_EQ(query(dup, Vec2(3, 3), 0, 0).size(), 100u);
 }
+
+// Weighted queries: only the points of weight ≥ wmin, whole light subtrees skipped; the
+// weights cluster (light band, heavy outside) as boxWeights do near a boundary layer.
+TEST(PointBoxTree, WeightedQueriesReportEveryHeavyEnoughPointInside) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec2> pts;
+  std::vector<double> w;
+  for (int i = 0; i < 4000; ++i) {
+    const bool band = i % 4 != 0;
+    pts.emplace_back(u(rng), band ? 0.5 + 1e-3 * (u(rng) - 0.5) : u(rng));
+    w.push_back(band ? 1e-6 * (1 + u(rng)) : 1e-2 * (1 + u(rng)));
+  }
+  w[17] = w[18];  // a tie: reported, since the bound is ≥
+  const PointBoxTree tree(pts, w);
+  for (int q = 0; q < 300; ++q) {
+    const Vec2 p = pts[std::size_t(q * 13)];
+    const double rx = 0.1 * u(rng), ry = q % 2 ? 0.1 * u(rng) : 1e-3 * u(rng);
+    const double wmin = q % 3 == 0 ? 0.0 : w[std::size_t(q * 13)];
+    std::vector<int> got, want;
+    tree.forEachInBoxFrom(p, rx, ry, wmin, [&](int id) { got.push_back(id); });
+    std::sort(got.begin(), got.end());
+    for (int id : bruteForce(pts, p, rx, ry))
+      if (w[std::size_t(id)] >= wmin) want.push_back(id);
+    EXPECT_EQ(got, want) << "query " << q;
+  }
+  std::vector<int> tie;
+  tree.forEachInBoxFrom(pts[18], 0, 0, w[18], [&](int id) { tie.push_back(id); });
+  EXPECT_NE(std::find(tie.begin(), tie.end(), 18), tie.end());
+}

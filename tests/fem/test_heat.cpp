@@ -89,7 +89,7 @@ TEST(TransientProblems, SourceIsTheTimeDerivativeMinusKappaLaplacian) {
   for (const auto& name : transientProblemNames()) {
     const TransientProblem p = makeTransientProblem(name);
     const double h = 1e-4;
-    for (const Vec2 x : {Vec2(0.6, 0.55), Vec2(0.72, 0.4), Vec2(0.3, 0.5)})
+    for (const Vec2& x : {Vec2(0.6, 0.55), Vec2(0.72, 0.4), Vec2(0.3, 0.5)})
       for (const double t : {0.05, 0.3}) {
         const auto u = [&](double dx, double dy, double dt) { return p.u(x.x() + dx, x.y() + dy, t + dt); };
         const double ut = (u(0, 0, h) - u(0, 0, -h)) / (2 * h);

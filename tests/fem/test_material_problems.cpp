@@ -64,7 +64,7 @@ TEST(MaterialProblems, PerSubdomainLoadIsIntegratedOnItsSubdomainOnly) {
   double total = 0;
   for (int d = 0; d < int(sys.b.size()); ++d) {
     const Vec2 x = sys.dofPoints[std::size_t(d)];
-    if (x.x() < 0.5) EXPECT_EQ(sys.b[d], 0.0) << "load in material 1 at " << x.transpose();
+    if (x.x() < 0.5) { EXPECT_EQ(sys.b[d], 0.0) << "load in material 1 at " << x.transpose(); }
     total += sys.b[d];
   }
   // ∫ f = 3 · 1/2, less the part on the bottom row's vertices (a third of the height at most)

@@ -28,5 +28,5 @@ TEST(ProgressLine, OffWhenStderrIsNotATerminalOrVerbosityIsZero) {
   EXPECT_FALSE(bool(quiet.callback()));
   ProgressLine line("mesh", 1);
   EXPECT_EQ(line.enabled(), ::isatty(STDERR_FILENO) == 1);
-  if (!line.enabled()) EXPECT_FALSE(bool(line.callback()));
+  if (!line.enabled()) { EXPECT_FALSE(bool(line.callback())); }
 }

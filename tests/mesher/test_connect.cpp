@@ -186,25 +186,23 @@ TEST(Connect, ConstantMetricGivesAnAffineImageOfEquilateralTriangles) {
 
 TEST(Connect, HoleCloseToTheOuterLoopAndAThinNeck) {
   // A hole one element from the outer boundary.
-  BoundaryLoop outer{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {}, false};
-  BoundaryLoop hole{{{0.06, 0.06}, {0.94, 0.06}, {0.94, 0.94}, {0.06, 0.94}}, {}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  const BoundaryLoop hole = BoundaryLoop::polygon({{0.06, 0.06}, {0.94, 0.06}, {0.94, 0.94}, {0.06, 0.94}});
   const MeshResult r1 = meshDomain(Domain(outer, {hole}), ConstantMetricField(Metric2::isotropic(0.05)));
   EXPECT_TRUE(r1.mesh.validate(Domain(outer, {hole}).area()).ok);
   // Two squares joined by a neck one element wide.
-  BoundaryLoop neck{{{0, 0},
-                     {1, 0},
-                     {1, 0.46},
-                     {1.5, 0.46},
-                     {1.5, 0},
-                     {2.5, 0},
-                     {2.5, 1},
-                     {1.5, 1},
-                     {1.5, 0.54},
-                     {1, 0.54},
-                     {1, 1},
-                     {0, 1}},
-                    {},
-                    false};
+  const BoundaryLoop neck = BoundaryLoop::polygon({{0, 0},
+                                                   {1, 0},
+                                                   {1, 0.46},
+                                                   {1.5, 0.46},
+                                                   {1.5, 0},
+                                                   {2.5, 0},
+                                                   {2.5, 1},
+                                                   {1.5, 1},
+                                                   {1.5, 0.54},
+                                                   {1, 0.54},
+                                                   {1, 1},
+                                                   {0, 1}});
   const Domain dn(neck);
   const MeshResult r2 = meshDomain(dn, ConstantMetricField(Metric2::isotropic(0.08)));
   const auto v = r2.mesh.validate(dn.area());
@@ -215,7 +213,7 @@ TEST(Connect, SmoothLoopFreesTheBoundaryOfCrowdedCorners) {
   // A circular hole given as a 96-gon of side 0.02 under h = 0.1: as a plain polygon every
   // point is a fixed vertex (five per metric size), as a smooth loop the mesher spaces its own
   // boundary nodes; both are valid, the smooth one has far better elements and fewer nodes there.
-  BoundaryLoop outer{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, {}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{-1, -1}, {1, -1}, {1, 1}, {-1, 1}});
   BoundaryLoop circle;
   for (int k = 0; k < 96; ++k)
     circle.points.emplace_back(0.3 * std::cos(2 * std::numbers::pi * k / 96),
@@ -292,8 +290,8 @@ INSTANTIATE_TEST_SUITE_P(Section43, PaperDiskMesh,
 // on a square with a square hole (our choice of geometry; the paper does not give its own):
 // measured q mean 0.986, min 0.715, 99.6 % in [1/√2, √2], 87.3 % within ±10 %.
 TEST(Connect, PaperEq4SquareWithHole) {
-  BoundaryLoop outer{{{-0.6, -0.6}, {0.6, -0.6}, {0.6, 0.6}, {-0.6, 0.6}}, {}, false};
-  BoundaryLoop hole{{{-0.2, -0.2}, {0.2, -0.2}, {0.2, 0.2}, {-0.2, 0.2}}, {}, false};
+  const BoundaryLoop outer = BoundaryLoop::polygon({{-0.6, -0.6}, {0.6, -0.6}, {0.6, 0.6}, {-0.6, 0.6}});
+  const BoundaryLoop hole = BoundaryLoop::polygon({{-0.2, -0.2}, {0.2, -0.2}, {0.2, 0.2}, {-0.2, 0.2}});
   const Domain d(outer, {hole});
   const AnalyticMetricField m(AnalyticMetricField::Form::Tensor, "(1+4*x^2)/0.05^2", "4*x*y/0.05^2",
                               "(1+4*y^2)/0.05^2");

@@ -39,7 +39,7 @@ TEST(MeshDomain, ProgressReportsStagesInOrderAndLeavesTheMeshAlone) {
   EXPECT_EQ(stages[1], "connection");
   EXPECT_EQ(stages[2], "improve");
   for (const auto& p : reports)
-    if (std::string(p.stage) != "placement") EXPECT_GT(p.nodes, 0) << p.stage;
+    if (std::string(p.stage) != "placement") { EXPECT_GT(p.nodes, 0) << p.stage; }
   int lastStep = -1;
   for (const auto& p : reports)  // placement steps, if reported, only grow
     if (p.step >= 0) {
