@@ -40,7 +40,10 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
 }
 
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                  const AdaptOptions& options) {
+                                  const AdaptOptions& options, std::span<const double> densityScale) {
+  ABLMG_REQUIRE(densityScale.empty() || long(densityScale.size()) == long(mesh.numVertices()),
+                "metricFromRecovered: " << densityScale.size() << " density factors for " << mesh.numVertices()
+                                        << " vertices");
   Stopwatch watch;
   AdaptedMetric r;
   MetricOptions mo = options.metric;
@@ -74,6 +77,11 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     // Gradation only refines: restore the complexity by a uniform rescale (shape kept).
     const double c = metricComplexity(mesh, metric), target = complexityForVertices(targetVertices);
     const double s = target / c;
+    for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
+  }
+  if (!densityScale.empty()) {  // √det(s M) = s √det M: s scales the density; rescaled to N
+    for (std::size_t v = 0; v < metric.size(); ++v) metric[v] = densityScale[v] * metric[v];
+    const double s = complexityForVertices(targetVertices) / metricComplexity(mesh, metric);
     for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
   }
   r.secondsMetric = watch.seconds();

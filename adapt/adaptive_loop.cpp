@@ -1,6 +1,7 @@
 #include "ablmg/adapt/adaptive_loop.hpp"
 
 #include "ablmg/adapt/convergence.hpp"
+#include "ablmg/adapt/dual_weight.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/metric_field.hpp"
 #include "ablmg/core/stopwatch.hpp"
@@ -19,6 +20,8 @@ void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "adapt options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
   ABLMG_REQUIRE(o.l2Share >= 0 && o.l2Share < 1, "adapt options: l2Share must be in [0, 1) (got " << o.l2Share << ")");
+  ABLMG_REQUIRE(o.dualWeight >= 0 && std::isfinite(o.dualWeight),
+                "adapt options: dualWeight must be >= 0 (got " << o.dualWeight << ")");
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
                 "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
   MetricOptions m = o.metric;
@@ -76,6 +79,16 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 }
 
 namespace {
+/// The dual-weighted density factor of dual_weight.hpp (empty when off or when the problem has no
+/// Dirichlet boundary: the unit-load dual would have no solution).
+std::vector<double> dualWeightScale(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
+                                    const AdaptOptions& options) {
+  if (options.dualWeight <= 0 || (problem.dirichlet.empty() && !problem.hasDirichletDefault)) return {};
+  const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
+  const auto eta = dualWeightedIndicators(mesh, std::span<const double>(u.data(), u.size()),
+                                          std::span<const double>(z.u.data(), z.u.size()));
+  return adapt::dualWeightScale(mesh, eta, options.dualWeight);
+}
 void requireMeshIndependent(const AdaptProblem& p) {
   const auto check = [](const fem::ScalarData& d, const std::string& what) {
     ABLMG_REQUIRE(!d.isVertexValues(), "adaptive loop: " << what
@@ -256,12 +269,13 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
       reportStage(options, "metric", s, cycles, row.vertices);
-      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options);
+      const std::vector<double> scale = dualWeightScale(current.mesh, sol.u, poisson, options);
+      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
       row.metricChange = metricChange(current.metric, a.metric);
       const int skipTo = repeatsToSkip(options, s, cycles, row.metricChange);
       if (skipTo > s) {
         s = skipTo;
-        if (target(s + 1) != target(s)) a = metricFromRecovered(current.mesh, hessians, target(s + 1), options);
+        if (target(s + 1) != target(s)) a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
       }
       next = std::move(a.metric);
       row.tMetric = a.secondsMetric;

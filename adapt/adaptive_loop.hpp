@@ -136,6 +136,14 @@ struct AdaptOptions {
   /// singularity's L2 rate −0.79 → −0.47 (the corner's dual is singular too: p = ∞ is its
   /// L2-optimal grading, see metric above). So it is off by default.
   double l2Share = 0;
+  /// γ > 0: the dual-weighted density correction (adapt/dual_weight.hpp, derivation and
+  /// measurements there): in runAdaptiveLoop the graded metric is multiplied by s = (η/η̄)^γ per
+  /// vertex (clamped to [½, 2]), η the dual-weighted indicator of u_h and of the unit-load dual
+  /// z_h (one more solve per cycle), then rescaled to N. Default ¼: the steep front's L2 ratio to
+  /// FreeFem++ 1.29 → 0.76, the wave front's, peak's and multiple's L2 0.15–0.2 lower, H1 and the
+  /// corners unchanged (±0.02); the layer's and the line singularity's L2 rates fall to −0.63 and
+  /// −0.50. 0 = off (and in adaptMetric, which has no problem to solve the dual of).
+  double dualWeight = 0.25;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
@@ -296,7 +304,9 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
                           const AdaptOptions& options);
 
 /// adaptMetric's second half, on Hessians already recovered (one per vertex of `mesh`).
+/// `densityScale` (empty, or one factor > 0 per vertex): the graded metric is multiplied by it
+/// and rescaled to the target complexity (dual_weight.hpp).
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                  const AdaptOptions& options);
+                                  const AdaptOptions& options, std::span<const double> densityScale = {});
 
 }  // namespace ablmg::adapt

@@ -70,7 +70,7 @@
 /// N^(−1/2), which h ≤ κ h_N ensures at a cost of at most 1/κ² of the vertices. Measured on the
 /// wave front of α = 1000 (examples/compare_freefem/run.sh's FreeFem++ loop to 2.8·10⁴
 /// vertices, the loop's defaults otherwise): the L2 ratio to FreeFem's at 2.8·10⁴ vertices
-/// 1.29 → 1.06 / 1.06 / 1.12 at κ = 2 / 3 / 5, but the peak's H1 ratio 0.92 → 1.04 at κ = 2. The
+/// 1.29 → 1.06 / 1.12 / 1.06 at κ = 2 / 3 / 5, but the peak's H1 ratio 0.92 → 1.04 at κ = 2. The
 /// steep front's L2 error is generated beside the front, not in the far field (adaptive_loop.hpp,
 /// l2Share), so the floor buys little there; hence off.
 ///

@@ -5,7 +5,7 @@
 //               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
-//               [--hmax-uniform K] [--l2-share F]
+//               [--hmax-uniform K] [--l2-share F] [--dual-weight G]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
@@ -138,6 +138,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
     } else if (key == "--hmax") {
       a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
+    } else if (key == "--dual-weight") {
+      a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
     } else if (key == "--l2-share") {
       a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
     } else if (key == "--hmax-uniform") {
@@ -193,8 +195,8 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << key
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --hmax-uniform --l2-share --max-aniso --seed --stop-l2 --stop-h1 "
-                           "--warm-start --lattice --saddle-shape --repeat-min-change "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --max-aniso --seed "
+                           "--stop-l2 --stop-h1 --warm-start --lattice --saddle-shape --repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
@@ -303,6 +305,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"hmax_uniform", std::isinf(a.options.metric.hmaxUniform) ? nlohmann::json("inf")
                                                                     : nlohmann::json(a.options.metric.hmaxUniform)},
           {"l2_share", a.options.l2Share},
+          {"dual_weight", a.options.dualWeight},
           {"warm_start", a.options.warmStart},
           {"repeat_min_change", a.options.repeatMinChange},
           {"saddle_shape", a.options.metric.saddleShape},
@@ -316,9 +319,10 @@ const char* kAdaptHelp =
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
-                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--max-aniso R] [--seed S]
-                   [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long] [--plateau-gain G]
-                   [--saddle-shape S] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off]
+                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G]
+                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long]
+                   [--plateau-gain G] [--saddle-shape S] [--repeat-min-change C] [--uniform on|off] [--vtu on|off]
+                   [--medit on|off]
                    [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
 
