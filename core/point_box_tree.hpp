@@ -13,7 +13,6 @@
 #include "ablmg/core/vec2.hpp"
 
 #include <array>
-#include <cmath>
 #include <limits>
 #include <span>
 #include <vector>
@@ -37,38 +36,6 @@ class PointBoxTree {
   void forEachInBox(const Vec2& p, double rx, double ry, F&& f) const {
     forEachInBoxFrom(p, rx, ry, -std::numeric_limits<double>::infinity(), f);
   }
-  /// Calls f(id) for every point q of weight ≥ wmin with |u·(q − p)| ≤ hu and |v·(q − p)| ≤ hv,
-  /// v = u turned by +90° (u a unit vector): a rectangle turned with u. A thin ellipse turned
-  /// by θ has an axis-aligned box of height ≈ h1·|sin θ|, 10² times its own h2 when the
-  /// anisotropy is 10⁴ and θ = 10⁻² (a recovered metric's noise); its rectangle does not.
-  /// Subtrees are skipped by the separating axes x, y, u, v.
-  template <class F>
-  void forEachInRectFrom(const Vec2& p, const Vec2& u, double hu, double hv, double wmin, F&& f) const {
-    if (nodes_.empty()) return;
-    const Vec2 v(-u.y(), u.x());
-    const double ax = std::abs(u.x()), ay = std::abs(u.y());
-    const double bx = ax * hu + ay * hv, by = ay * hu + ax * hv;  // the rectangle's axis-aligned half box
-    std::array<int, 64> stack;
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& nd = nodes_[std::size_t(stack[--top])];
-      const Vec2 c = 0.5 * (nd.lo + nd.hi) - p, e = 0.5 * (nd.hi - nd.lo);
-      if (nd.wmax < wmin || std::abs(c.x()) > e.x() + bx || std::abs(c.y()) > e.y() + by) continue;
-      if (std::abs(u.dot(c)) > hu + ax * e.x() + ay * e.y() || std::abs(v.dot(c)) > hv + ay * e.x() + ax * e.y())
-        continue;
-      if (nd.left >= 0) {
-        stack[top++] = nd.left + 1;
-        stack[top++] = nd.left;
-        continue;
-      }
-      for (int k = nd.begin; k < nd.end; ++k) {
-        const Vec2 d = pts_[std::size_t(k)] - p;
-        if (std::abs(u.dot(d)) <= hu && std::abs(v.dot(d)) <= hv && w_[std::size_t(k)] >= wmin) f(ids_[std::size_t(k)]);
-      }
-    }
-  }
-
   /// The same for the points of weight ≥ wmin only (weights given to the constructor): a
   /// subtree whose weights are all below wmin is skipped whole, so a wide box over a dense
   /// cluster of light points costs O(log n) when they are not wanted.

@@ -19,41 +19,25 @@ namespace {
 /// which kMinParallelItems left on one thread below 2048 rows.
 constexpr int kMinParallelRows = 128;
 
-/// A node's unit ellipse {d : |d|_M ≤ 1} as a rectangle: long axis u (unit), half-widths h1
-/// along u and h2 across; w = h1·h2, the weight that decides which node of a pair searches for
-/// it (the lighter; ties by the smaller id).
-struct Reach {
-  Vec2 u;
-  double h1, h2, w;
-  explicit Reach(const Metric2& m) {
-    const MetricEigen e = m.eigen();
-    u = Vec2(std::cos(e.theta), std::sin(e.theta));
-    h1 = e.h1;
-    h2 = e.h2;
-    w = h1 * h2;
-  }
-};
+/// reachBox(m, radius) widened by 10⁻⁹ of itself: a pair that passes withinMetricRadius in
+/// floating point lies in one node's box even when the rounding of the box's square roots and
+/// of the lengths falls the wrong way at its edge (the tree reports only points in the box).
+Vec2 searchBox(const Metric2& m, double radius) { return reachBox(m, radius) * (1 + 1e-9); }
 
-/// Reach::w of every node (only the weights are kept: 8 bytes a node at the peak of a build).
-std::vector<double> reachWeights(std::span<const Metric2> m) {
+/// Box area of each node's reach box at radius 1: the weight that decides which node of a pair
+/// searches for it (the one with the smaller box; ties by the smaller id).
+std::vector<double> boxWeights(std::span<const Metric2> m) {
   std::vector<double> w(m.size());
-#pragma omp parallel for schedule(static) if (m.size() >= std::size_t(kMinParallelItems))
-  for (std::size_t i = 0; i < m.size(); ++i) w[i] = Reach(m[i]).w;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const Vec2 R = reachBox(m[i], 1.0);
+    w[i] = R.x() * R.y();
+  }
   return w;
 }
 
-/// Calls f(j) for the nodes j of weight ≥ r.w in the rectangle of the ellipse of radius ρ
-/// around p, widened against rounding: by 10⁻⁹ of itself, and across by 10⁻¹² of its length
-/// (the error of the computed eigenvector, ~10⁻¹⁶ rad, times the length).
-template <class F>
-void forEachInReach(const PointBoxTree& tree, const Vec2& p, const Reach& r, double rho, F&& f) {
-  const double hu = rho * r.h1 * (1 + 1e-9), hv = rho * r.h2 * (1 + 1e-9) + 1e-12 * hu;
-  tree.forEachInRectFrom(p, r.u, hu, hv, r.w, f);
-}
-
 /// A pair within the radius has |d|²_{M_i} and |d|²_{M_j} both ≤ 2·radius² (their mean is ≤
-/// radius²), so it lies in the √2·radius ellipse (and rectangle, forEachInReach) of either node: it is searched from one of them
-/// only, the lighter (Reach::w), in a tree that skips lighter nodes whole. A coarse bubble
+/// radius²), so it lies in the √2·radius box of either node: it is searched from one of them
+/// only, the lighter (boxWeights), in a tree that skips lighter nodes whole. A coarse bubble
 /// beside a boundary layer then never enumerates the layer's nodes in its wide box (a third of
 /// a layer remesh's adjacency builds went there).
 constexpr double kPairSearch = 1.4142135623730951;
@@ -96,12 +80,13 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   if (n == 0) return {};
-  const std::vector<double> w = reachWeights(m);
+  const std::vector<double> w = boxWeights(m);
   const PointBoxTree tree(x, w);
   // Each pair once, from its lighter node (kPairSearch); the transpose below adds the other way.
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
+    const Vec2 R = searchBox(m[i], kPairSearch * radius);
     const std::size_t start = out.size();
-    forEachInReach(tree, x[i], Reach(m[i]), kPairSearch * radius, [&](int j) {
+    tree.forEachInBoxFrom(x[i], R.x(), R.y(), w[i], [&](int j) {
       if ((w[j] > w[i] || j > i) && withinMetricRadius(x[j] - x[i], m[i], m[j], radius)) out.push_back(j);
     });
     std::sort(out.begin() + std::ptrdiff_t(start), out.end());
@@ -412,7 +397,7 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
   const int n = int(x.size());
   std::vector<std::pair<int, int>> pairs;
   if (firstNew >= n) return pairs;
-  const std::vector<double> w = reachWeights(m);
+  const std::vector<double> w = boxWeights(m);
   const PointBoxTree all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
@@ -422,14 +407,16 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
 #pragma omp for schedule(static) nowait
     for (int k = firstNew; k < n; ++k)
       failure.run(k, [&] {
-        forEachInReach(all, x[k], Reach(m[k]), kPairSearch * radius, [&](int j) {
+        const Vec2 R = searchBox(m[k], kPairSearch * radius);
+        all.forEachInBoxFrom(x[k], R.x(), R.y(), w[k], [&](int j) {
           if ((w[j] > w[k] || j > k) && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
         });
       });
 #pragma omp for schedule(static)
     for (int j = 0; j < firstNew; ++j)
       failure.run(long(n) + j, [&] {  // ties go to j, the smaller id
-        forEachInReach(fresh, x[j], Reach(m[j]), kPairSearch * radius, [&](int q) {
+        const Vec2 R = searchBox(m[j], kPairSearch * radius);
+        fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[j], [&](int q) {
           const int k = firstNew + q;
           if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
         });
