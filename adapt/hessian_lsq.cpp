@@ -1,6 +1,7 @@
 #include "ablmg/adapt/hessian_recovery.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -19,23 +20,14 @@ constexpr int kMinParallelVertices = 2048;
 
 namespace detail {
 void forEachVertex(int n, const std::function<void(int, std::vector<int>&, std::vector<int>&)>& fit) {
-  int failed = 0;
-#pragma omp parallel if (n >= kMinParallelVertices) reduction(+ : failed)
+  ParallelFailure failure;  // exceptions must not leave the region: the lowest vertex's is rethrown
+#pragma omp parallel if (n >= kMinParallelVertices)
   {
     std::vector<int> patch, mark(std::size_t(n), 0);
 #pragma omp for schedule(dynamic, 256)
-    for (int v = 0; v < n; ++v) {
-      try {
-        fit(v, patch, mark);
-      } catch (...) {  // exceptions must not leave the parallel region
-        ++failed;
-      }
-    }
+    for (int v = 0; v < n; ++v) failure.run(v, [&] { fit(v, patch, mark); });
   }
-  if (failed) {  // again, serially: throws the first error, as a serial loop would
-    std::vector<int> patch, mark(std::size_t(n), 0);
-    for (int v = 0; v < n; ++v) fit(v, patch, mark);
-  }
+  failure.rethrow();
 }
 
 namespace {

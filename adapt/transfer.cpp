@@ -1,6 +1,7 @@
 #include "ablmg/adapt/transfer.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/core/point_locator.hpp"
 #include "ablmg/core/predicates.hpp"
@@ -357,15 +358,18 @@ std::vector<Eigen::VectorXd> interpolateFields(const Mesh2& oldMesh, const Mesh2
   const int nv = newMesh.numVertices(), nf = int(fields.size());
   std::vector<Eigen::VectorXd> out(static_cast<std::size_t>(nf), Eigen::VectorXd(nv));
   std::vector<char> outside(std::size_t(nv), 0);
+  ParallelFailure failure;  // location allocates on its rescue path: rethrown after the region
 #pragma omp parallel for schedule(static)
-  for (int v = 0; v < nv; ++v) {
-    const auto loc = locator.locate(newMesh.vertices[std::size_t(v)]);
-    outside[std::size_t(v)] = !loc.inside;
-    const auto& tr = oldMesh.triangles[std::size_t(loc.triangle)];
-    for (int f = 0; f < nf; ++f)
-      out[std::size_t(f)][v] =
-          loc.bary[0] * fields[f][tr[0]] + loc.bary[1] * fields[f][tr[1]] + loc.bary[2] * fields[f][tr[2]];
-  }
+  for (int v = 0; v < nv; ++v)
+    failure.run(v, [&] {
+      const auto loc = locator.locate(newMesh.vertices[std::size_t(v)]);
+      outside[std::size_t(v)] = !loc.inside;
+      const auto& tr = oldMesh.triangles[std::size_t(loc.triangle)];
+      for (int f = 0; f < nf; ++f)
+        out[std::size_t(f)][v] =
+            loc.bary[0] * fields[f][tr[0]] + loc.bary[1] * fields[f][tr[1]] + loc.bary[2] * fields[f][tr[2]];
+    });
+  failure.rethrow();
   for (int v = 0; v < nv; ++v) {
     if (!outside[std::size_t(v)]) continue;
     ++stats.outsideVertices;
@@ -427,6 +431,7 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
   std::vector<double> rhs(std::size_t(nt) * 3 * std::size_t(nf), 0.0);
   std::vector<double> areaOf(std::size_t(nt), 0.0);
   std::vector<int> piecesOf(std::size_t(nt), 0);
+  ParallelFailure failure;  // the fronts allocate: rethrown after the region, the lowest triangle's
 #pragma omp parallel
   {
     std::vector<int> visited;
@@ -436,35 +441,37 @@ std::vector<double> supermeshLoads(const Mesh2& oldMesh, const Mesh2& newMesh, s
     std::vector<double> moments(3 * std::size_t(nf));
     int hint = -1;
 #pragma omp for schedule(dynamic, kChunk)
-    for (int t = 0; t < nt; ++t) {
-      const std::array<Vec2, 3> tri = corners(newMesh, t);
-      const Vec2 o = tri[0];
-      std::fill(moments.begin(), moments.end(), 0.0);
-      double area = 0;
-      int pieces = 0;
-      hint = frontOfTriangle(oldMesh, starts, nb, t, tri, t % kChunk == 0 ? -1 : hint, visited, cache,
-                             [&](int old, const Polygon&, const Moments& m) {
-                               area += m.area;
-                               ++pieces;
-                               const Vec2 shift = o - oldMesh.vertices[oldMesh.triangles[std::size_t(old)][0]];
-                               const double* c = coefficients.data() + std::size_t(old) * std::size_t(nf) * 3;
-                               for (std::size_t f = 0; f < std::size_t(nf); ++f, c += 3) {
-                                 const double a = c[0] + c[1] * shift.x() + c[2] * shift.y();
-                                 moments[3 * f] += a * m.area + c[1] * m.x + c[2] * m.y;
-                                 moments[3 * f + 1] += a * m.x + c[1] * m.xx + c[2] * m.xy;
-                                 moments[3 * f + 2] += a * m.y + c[1] * m.xy + c[2] * m.yy;
-                               }
-                             });
-      const std::array<Affine, 3> phi = hatFunctions(tri, o);
-      double* b = rhs.data() + std::size_t(t) * 3 * std::size_t(nf);
-      for (std::size_t k = 0; k < 3; ++k)
-        for (std::size_t f = 0; f < std::size_t(nf); ++f)
-          b[k * std::size_t(nf) + f] =
-              phi[k].a * moments[3 * f] + phi[k].g.x() * moments[3 * f + 1] + phi[k].g.y() * moments[3 * f + 2];
-      areaOf[std::size_t(t)] = area;
-      piecesOf[std::size_t(t)] = pieces;
-    }
+    for (int t = 0; t < nt; ++t)
+      failure.run(t, [&] {
+        const std::array<Vec2, 3> tri = corners(newMesh, t);
+        const Vec2 o = tri[0];
+        std::fill(moments.begin(), moments.end(), 0.0);
+        double area = 0;
+        int pieces = 0;
+        hint = frontOfTriangle(oldMesh, starts, nb, t, tri, t % kChunk == 0 ? -1 : hint, visited, cache,
+                               [&](int old, const Polygon&, const Moments& m) {
+                                 area += m.area;
+                                 ++pieces;
+                                 const Vec2 shift = o - oldMesh.vertices[oldMesh.triangles[std::size_t(old)][0]];
+                                 const double* c = coefficients.data() + std::size_t(old) * std::size_t(nf) * 3;
+                                 for (std::size_t f = 0; f < std::size_t(nf); ++f, c += 3) {
+                                   const double a = c[0] + c[1] * shift.x() + c[2] * shift.y();
+                                   moments[3 * f] += a * m.area + c[1] * m.x + c[2] * m.y;
+                                   moments[3 * f + 1] += a * m.x + c[1] * m.xx + c[2] * m.xy;
+                                   moments[3 * f + 2] += a * m.y + c[1] * m.xy + c[2] * m.yy;
+                                 }
+                               });
+        const std::array<Affine, 3> phi = hatFunctions(tri, o);
+        double* b = rhs.data() + std::size_t(t) * 3 * std::size_t(nf);
+        for (std::size_t k = 0; k < 3; ++k)
+          for (std::size_t f = 0; f < std::size_t(nf); ++f)
+            b[k * std::size_t(nf) + f] =
+                phi[k].a * moments[3 * f] + phi[k].g.x() * moments[3 * f + 1] + phi[k].g.y() * moments[3 * f + 2];
+        areaOf[std::size_t(t)] = area;
+        piecesOf[std::size_t(t)] = pieces;
+      });
   }
+  failure.rethrow();
   for (int t = 0; t < nt; ++t) {
     stats.supermeshArea += areaOf[std::size_t(t)];
     stats.supermeshPieces += piecesOf[std::size_t(t)];

@@ -1,6 +1,7 @@
 #include "ablmg/core/metric_field.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,26 +80,33 @@ void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Met
     if (chunks == 1) chunk(0);
     return;
   }
+  // Point location allocates on its rescue path: a failure (std::bad_alloc) is rethrown after
+  // the region, the lowest chunk's (core/parallel_failure.hpp).
+  ParallelFailure failure;
 #pragma omp parallel for schedule(static)
-  for (long c = 0; c < chunks; ++c) chunk(c);
+  for (long c = 0; c < chunks; ++c) failure.run(c, [&] { chunk(c); });
+  failure.rethrow();
 }
 
 void BackgroundMetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const {
   ABLMG_ASSERT(points.size() == out.size(), "");
   constexpr long kChunk = 512;
   const long n = long(points.size()), chunks = (n + kChunk - 1) / kChunk;
+  ParallelFailure failure;  // as in evaluate()
 #pragma omp parallel for schedule(static) if (n >= 2048)
-  for (long c = 0; c < chunks; ++c) {
-    int hint = -1;
-    for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
-      const auto loc = locator_->locate(points[std::size_t(i)], hint);
-      hint = loc.triangle;
-      const auto& tr = mesh_.triangles[loc.triangle];
-      double halfTrace = 0;
-      for (int k = 0; k < 3; ++k) halfTrace += loc.bary[k] * 0.5 * (logs_[tr[k]].m11() + logs_[tr[k]].m22());
-      out[std::size_t(i)] = std::exp(halfTrace);
-    }
-  }
+  for (long c = 0; c < chunks; ++c)
+    failure.run(c, [&] {
+      int hint = -1;
+      for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+        const auto loc = locator_->locate(points[std::size_t(i)], hint);
+        hint = loc.triangle;
+        const auto& tr = mesh_.triangles[loc.triangle];
+        double halfTrace = 0;
+        for (int k = 0; k < 3; ++k) halfTrace += loc.bary[k] * 0.5 * (logs_[tr[k]].m11() + logs_[tr[k]].m22());
+        out[std::size_t(i)] = std::exp(halfTrace);
+      }
+    });
+  failure.rethrow();
 }
 
 void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out) const {

@@ -1,6 +1,7 @@
 #include "ablmg/fem/assemble.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/fem/quadrature.hpp"
 
 #include <algorithm>
@@ -250,17 +251,10 @@ void assembleElements(const Mesh2& mesh, const PoissonProblem& problem, LinearSy
   const bool parallel = problem.threadSafeFunctions && nt >= 2 * kBlock;
   for (int t0 = 0; t0 < nt; t0 += kBlock) {
     const int t1 = std::min(nt, t0 + kBlock);
-    int failed = 0;
-#pragma omp parallel for schedule(static) reduction(+ : failed) if (parallel)
-    for (int t = t0; t < t1; ++t) {
-      try {
-        computeElement(mesh, problem, rule, t, block[t - t0]);
-      } catch (...) {  // exceptions must not leave the parallel region
-        ++failed;
-      }
-    }
-    if (failed)  // again, serially: throws the first error, as a serial loop would
-      for (int t = t0; t < t1; ++t) computeElement(mesh, problem, rule, t, block[t - t0]);
+    ParallelFailure failure;  // the error of the lowest triangle is rethrown, as a serial loop would
+#pragma omp parallel for schedule(static) if (parallel)
+    for (int t = t0; t < t1; ++t) failure.run(t, [&] { computeElement(mesh, problem, rule, t, block[t - t0]); });
+    failure.rethrow();
     for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys);
   }
 }

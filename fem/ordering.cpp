@@ -1,6 +1,7 @@
 #include "ablmg/fem/ordering.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -30,6 +31,9 @@ struct Dissection {
   /// reach[4 v + d] ≥ max over v's neighbours w of |along(w, d) − along(v, d)| (rounded up to
   /// float): a vertex farther than that from a cut line has no edge across it.
   std::vector<float> reach;
+  /// An exception out of a task (allocation) is kept here, rethrown after the region: the
+  /// piece of the lowest offset wins (core/parallel_failure.hpp).
+  ParallelFailure failure;
 
   static constexpr std::size_t kTaskCutoff = 20000;  ///< pieces smaller than this stay serial
 
@@ -223,7 +227,7 @@ struct Dissection {
     emit(separator, sepOffset);
     if (lower.size() + upper.size() >= kTaskCutoff) {
 #pragma omp task default(none) firstprivate(lower, offset)
-      order(std::move(lower), offset);
+      failure.run(long(offset), [&] { order(std::move(lower), offset); });
       order(std::move(upper), upperOffset);
 #pragma omp taskwait
     } else {
@@ -249,6 +253,7 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
                std::make_unique<std::atomic<int>[]>(std::size_t(n)),
                {},
                std::vector<int>(n, -1),
+               {},
                {}};
   for (int v = 0; v < n; ++v) d.setMark(v, 0);
   if (cut == CutChoice::SmallestSeparator && n > d.leafSize) {  // tiny systems: one AMD leaf
@@ -268,7 +273,8 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
   for (int i = 0; i < n; ++i) all[i] = i;
 #pragma omp parallel if (n >= int(Dissection::kTaskCutoff))
 #pragma omp single
-  d.order(std::move(all), 0);
+  d.failure.run(-1, [&] { d.order(std::move(all), 0); });
+  d.failure.rethrow();
   return d.perm;
 }
 

@@ -1,6 +1,7 @@
 #include "ablmg/fem/p1_matrices.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,26 +29,31 @@ P1Pattern p1Pattern(const Mesh2& mesh) {
   const Mesh2::VertexTriangles vt = mesh.vertexTriangles();
   P1Pattern p;
   std::vector<int> outer(std::size_t(nv) + 1, 0);
+  ParallelFailure failure;  // the rows allocate: rethrown after each region, the lowest vertex's
 #pragma omp parallel
   {
     std::vector<int> row;
 #pragma omp for schedule(static)
-    for (int v = 0; v < nv; ++v) {
-      sortedRow(mesh, vt, v, row);
-      outer[std::size_t(v) + 1] = int(row.size());
-    }
+    for (int v = 0; v < nv; ++v)
+      failure.run(v, [&] {
+        sortedRow(mesh, vt, v, row);
+        outer[std::size_t(v) + 1] = int(row.size());
+      });
   }
+  failure.rethrow();
   for (int v = 0; v < nv; ++v) outer[std::size_t(v) + 1] += outer[std::size_t(v)];
   std::vector<int> inner(std::size_t(outer.back()));
 #pragma omp parallel
   {
     std::vector<int> row;
 #pragma omp for schedule(static)
-    for (int v = 0; v < nv; ++v) {
-      sortedRow(mesh, vt, v, row);
-      std::copy(row.begin(), row.end(), inner.begin() + outer[std::size_t(v)]);
-    }
+    for (int v = 0; v < nv; ++v)
+      failure.run(v, [&] {
+        sortedRow(mesh, vt, v, row);
+        std::copy(row.begin(), row.end(), inner.begin() + outer[std::size_t(v)]);
+      });
   }
+  failure.rethrow();
   // The pattern is symmetric, so the rows built above are also the columns (CSC).
   p.matrix = Eigen::SparseMatrix<double>(nv, nv);
   p.matrix.resizeNonZeros(Eigen::Index(inner.size()));

@@ -1,6 +1,7 @@
 #include "ablmg/mesher/adjacency.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
 
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/point_box_tree.hpp"
 
 #include <omp.h>
@@ -50,18 +51,22 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   a.offsets.assign(std::size_t(n) + 1, 0);
   std::vector<std::vector<int>> buf(static_cast<std::size_t>(omp_get_max_threads()));
   std::vector<int> blockLo(buf.size() + 1, n);
+  ParallelFailure failure;  // rows allocate: rethrown after the region, the lowest block's
 #pragma omp parallel if (n >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
     blockLo[t] = lo;
     auto& out = buf[t];
-    for (int i = lo; i < hi; ++i) {
-      const std::size_t before = out.size();
-      rowFn(i, out);
-      a.offsets[i + 1] = int(out.size() - before);
-    }
+    failure.run(lo, [&] {
+      for (int i = lo; i < hi; ++i) {
+        const std::size_t before = out.size();
+        rowFn(i, out);
+        a.offsets[i + 1] = int(out.size() - before);
+      }
+    });
   }
+  failure.rethrow();
   for (int i = 0; i < n; ++i) a.offsets[i + 1] += a.offsets[i];
   a.ids.resize(std::size_t(a.offsets[n]));
 #pragma omp parallel for schedule(static, 1) if (n >= kMinParallelItems)
@@ -137,61 +142,65 @@ NewRows twoRingRows(const AdjacencyLists& old, std::span<const int> rows, std::s
   r.start.assign(std::size_t(nd), 0);
   r.thread.assign(std::size_t(nd), 0);
   const double r2 = radius * radius;
+  ParallelFailure failure;  // the rows allocate: rethrown after the region, the lowest block's
 #pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
-    // Candidates seen for the current row: one bit per node (n/8 bytes, cache-resident),
-    // cleared after the row from the candidate list. Both passes below are branch-free
-    // (append, then advance the end only if the id is new / within the radius): whether a
-    // two-ring id was seen before is a coin flip that mispredicted about every other time.
-    std::vector<std::uint64_t> seen(lo < hi ? std::size_t(n) / 64 + 1 : 0, 0);
-    std::vector<int> cand;
-    auto& out = r.buf[std::size_t(t)];
-    for (int k = lo; k < hi; ++k) {
-      const int i = rows[std::size_t(k)];
-      const std::size_t start = out.size();
-      r.start[std::size_t(k)] = int(start);
-      r.thread[std::size_t(k)] = t;
-      std::size_t bound = 0;
-      for (int j : old.neighbours(i)) bound += 1 + old.neighbours(j).size();
-      if (cand.size() < bound) cand.resize(bound);
-      // 1. The distinct ids of the two-ring (i excluded), in first-visit order.
-      seen[std::size_t(i) >> 6] |= std::uint64_t(1) << (i & 63);
-      std::size_t nc = 0;
-      auto visit = [&](int c) {
-        std::uint64_t& word = seen[std::size_t(c) >> 6];
-        const std::uint64_t bit = std::uint64_t(1) << (c & 63);
-        cand[nc] = c;
-        nc += (word & bit) == 0;
-        word |= bit;
-      };
-      for (int j : old.neighbours(i)) {
-        visit(j);
-        for (int c : old.neighbours(j)) visit(c);
+    failure.run(lo, [&] {
+      // Candidates seen for the current row: one bit per node (n/8 bytes, cache-resident),
+      // cleared after the row from the candidate list. Both passes below are branch-free
+      // (append, then advance the end only if the id is new / within the radius): whether a
+      // two-ring id was seen before is a coin flip that mispredicted about every other time.
+      std::vector<std::uint64_t> seen(lo < hi ? std::size_t(n) / 64 + 1 : 0, 0);
+      std::vector<int> cand;
+      auto& out = r.buf[std::size_t(t)];
+      for (int k = lo; k < hi; ++k) {
+        const int i = rows[std::size_t(k)];
+        const std::size_t start = out.size();
+        r.start[std::size_t(k)] = int(start);
+        r.thread[std::size_t(k)] = t;
+        std::size_t bound = 0;
+        for (int j : old.neighbours(i)) bound += 1 + old.neighbours(j).size();
+        if (cand.size() < bound) cand.resize(bound);
+        // 1. The distinct ids of the two-ring (i excluded), in first-visit order.
+        seen[std::size_t(i) >> 6] |= std::uint64_t(1) << (i & 63);
+        std::size_t nc = 0;
+        auto visit = [&](int c) {
+          std::uint64_t& word = seen[std::size_t(c) >> 6];
+          const std::uint64_t bit = std::uint64_t(1) << (c & 63);
+          cand[nc] = c;
+          nc += (word & bit) == 0;
+          word |= bit;
+        };
+        for (int j : old.neighbours(i)) {
+          visit(j);
+          for (int c : old.neighbours(j)) visit(c);
+        }
+        // 2. Those within the radius (withinMetricRadius).
+        const Vec2 xi = x[i];
+        const Metric2& mi = m[i];
+        out.resize(start + nc);
+        std::size_t kept = start;
+        for (std::size_t q = 0; q < nc; ++q) {
+          const int c = cand[q];
+          seen[std::size_t(c) >> 6] = 0;
+          const Vec2 d = x[c] - xi;
+          out[kept] = c;
+          kept += mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2;
+        }
+        seen[std::size_t(i) >> 6] = 0;
+        out.resize(kept);
+        for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
+          const int v = out[q];
+          std::size_t b = q;
+          for (; b > start && out[b - 1] > v; --b) out[b] = out[b - 1];
+          out[b] = v;
+        }
       }
-      // 2. Those within the radius (withinMetricRadius).
-      const Vec2 xi = x[i];
-      const Metric2& mi = m[i];
-      out.resize(start + nc);
-      std::size_t kept = start;
-      for (std::size_t q = 0; q < nc; ++q) {
-        const int c = cand[q];
-        seen[std::size_t(c) >> 6] = 0;
-        const Vec2 d = x[c] - xi;
-        out[kept] = c;
-        kept += mi.squaredLength(d) + m[c].squaredLength(d) <= 2.0 * r2;
-      }
-      seen[std::size_t(i) >> 6] = 0;
-      out.resize(kept);
-      for (std::size_t q = start + 1; q < out.size(); ++q) {  // insertion sort: short, nearly sorted
-        const int v = out[q];
-        std::size_t b = q;
-        for (; b > start && out[b - 1] > v; --b) out[b] = out[b - 1];
-        out[b] = v;
-      }
-    }
+    });
   }
+  failure.rethrow();
   return r;
 }
 
@@ -304,30 +313,34 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   const int nd = int(dirty.size());
   std::vector<std::vector<std::pair<int, int>>> gainOf(static_cast<std::size_t>(omp_get_max_threads())),
       loseOf(gainOf.size());
+  ParallelFailure failure;  // push_back may throw: rethrown after the region, the lowest block's
 #pragma omp parallel if (nd >= kMinParallelRows)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(nd) * t / threads), hi = int(long(nd) * (t + 1) / threads);
     auto& gain = gainOf[std::size_t(t)];
     auto& lose = loseOf[std::size_t(t)];
-    for (int k = lo; k < hi; ++k) {
-      const int a = dirty[std::size_t(k)];
-      const auto nr = r.rowOf(k), orow = lists.neighbours(a);
-      std::size_t p = 0, q = 0;
-      while (p < nr.size() || q < orow.size()) {
-        if (q == orow.size() || (p < nr.size() && nr[p] < orow[q])) {
-          if (!mark[std::size_t(nr[p])]) gain.push_back({nr[p], a});
-          ++p;
-        } else if (p == nr.size() || orow[q] < nr[p]) {
-          if (!mark[std::size_t(orow[q])]) lose.push_back({orow[q], a});
-          ++q;
-        } else {
-          ++p;
-          ++q;
+    failure.run(lo, [&] {
+      for (int k = lo; k < hi; ++k) {
+        const int a = dirty[std::size_t(k)];
+        const auto nr = r.rowOf(k), orow = lists.neighbours(a);
+        std::size_t p = 0, q = 0;
+        while (p < nr.size() || q < orow.size()) {
+          if (q == orow.size() || (p < nr.size() && nr[p] < orow[q])) {
+            if (!mark[std::size_t(nr[p])]) gain.push_back({nr[p], a});
+            ++p;
+          } else if (p == nr.size() || orow[q] < nr[p]) {
+            if (!mark[std::size_t(orow[q])]) lose.push_back({orow[q], a});
+            ++q;
+          } else {
+            ++p;
+            ++q;
+          }
         }
       }
-    }
+    });
   }
+  failure.rethrow();
   std::vector<std::pair<int, int>> gain, lose;  // (outside row, partner)
   for (const auto& g : gainOf) gain.insert(gain.end(), g.begin(), g.end());
   for (const auto& l : loseOf) lose.insert(lose.end(), l.begin(), l.end());
@@ -387,25 +400,29 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
   const std::vector<double> w = boxWeights(m);
   const PointBoxTree all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
+  ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
 #pragma omp parallel if (n >= kMinParallelItems)
   {
     auto& out = found[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static) nowait
-    for (int k = firstNew; k < n; ++k) {
-      const Vec2 R = searchBox(m[k], kPairSearch * radius);
-      all.forEachInBoxFrom(x[k], R.x(), R.y(), w[k], [&](int j) {
-        if ((w[j] > w[k] || j > k) && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+    for (int k = firstNew; k < n; ++k)
+      failure.run(k, [&] {
+        const Vec2 R = searchBox(m[k], kPairSearch * radius);
+        all.forEachInBoxFrom(x[k], R.x(), R.y(), w[k], [&](int j) {
+          if ((w[j] > w[k] || j > k) && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
       });
-    }
 #pragma omp for schedule(static)
-    for (int j = 0; j < firstNew; ++j) {  // ties go to j, the smaller id
-      const Vec2 R = searchBox(m[j], kPairSearch * radius);
-      fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[j], [&](int q) {
-        const int k = firstNew + q;
-        if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+    for (int j = 0; j < firstNew; ++j)
+      failure.run(long(n) + j, [&] {  // ties go to j, the smaller id
+        const Vec2 R = searchBox(m[j], kPairSearch * radius);
+        fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[j], [&](int q) {
+          const int k = firstNew + q;
+          if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+        });
       });
-    }
   }
+  failure.rethrow();
   for (const auto& f : found)
     for (const auto& [k, j] : f) {
       pairs.push_back({k, j});

@@ -2,6 +2,7 @@
 #include "ablmg/mesher/parallel_threshold.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/mesher/bubble_force.hpp"
 
 #include <omp.h>
@@ -28,28 +29,34 @@ double collectIf(int n, std::vector<int>& out, std::vector<std::vector<int>>& pa
   parts.resize(std::size_t(omp_get_max_threads()));
   std::vector<std::size_t> offset(parts.size() + 1, 0);
   std::vector<double> best(kPad * parts.size(), 0.0);
+  // push_back and resize may throw (and pred, visit): rethrown after the region, the block of
+  // the lowest ids first; every thread still meets the barrier.
+  ParallelFailure failure;
 #pragma omp parallel if (n >= kMinParallelItems)
   {
     const int t = omp_get_thread_num(), threads = omp_get_num_threads();
     const int lo = int(long(n) * t / threads), hi = int(long(n) * (t + 1) / threads);
     auto& v = parts[std::size_t(t)];
     v.clear();
-    double m = 0;
-    for (int i = lo; i < hi; ++i) {
-      const double x = visit(i);
-      m = x > m ? x : m;
-      if (pred(i)) v.push_back(i);
-    }
-    best[kPad * std::size_t(t)] = m;
+    failure.run(lo, [&] {
+      double m = 0;
+      for (int i = lo; i < hi; ++i) {
+        const double x = visit(i);
+        m = x > m ? x : m;
+        if (pred(i)) v.push_back(i);
+      }
+      best[kPad * std::size_t(t)] = m;
+    });
     offset[std::size_t(t) + 1] = v.size();
 #pragma omp barrier
 #pragma omp single
-    {
+    failure.run(n, [&] {
       for (std::size_t k = 1; k < offset.size(); ++k) offset[k] += offset[k - 1];
       out.resize(offset.back());
-    }
-    std::copy(v.begin(), v.end(), out.begin() + std::ptrdiff_t(offset[std::size_t(t)]));
+    });
+    if (!failure.failed()) std::copy(v.begin(), v.end(), out.begin() + std::ptrdiff_t(offset[std::size_t(t)]));
   }
+  failure.rethrow();
   return *std::max_element(best.begin(), best.end());
 }
 template <class Pred>

@@ -1,6 +1,7 @@
 #include "ablmg/mesher/connect.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/predicates.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
@@ -177,29 +178,32 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
   const auto& adj = placement.adjacency;
   std::vector<std::vector<int>> rowsOf(n);
   long longLinks = 0;
+  ParallelFailure failure;  // push_back may throw: rethrown after the region
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads) reduction(+ : longLinks)
-  for (int i = 0; i < n; ++i) {
-    if (!used[i]) continue;
-    for (int j : adj.neighbours(i)) {
-      // Each pair is decided once, from its smaller node, and linked both ways below: the
-      // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
-      // floating point, and links must be symmetric (markDead writes both directions).
-      if (j <= i || !used[j]) continue;
-      const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
-      if (!boundaryLink) {
-        if (nextB[i] >= 0 && !inSector(i, j)) continue;
-        if (nextB[j] >= 0 && !inSector(j, i)) continue;
-        // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
-        // size) is not worth testing: dropped, its triangles come from the scaffold.
-        if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) {
-          ++longLinks;
-          continue;
+  for (int i = 0; i < n; ++i)
+    failure.run(i, [&] {
+      if (!used[i]) return;
+      for (int j : adj.neighbours(i)) {
+        // Each pair is decided once, from its smaller node, and linked both ways below: the
+        // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
+        // floating point, and links must be symmetric (markDead writes both directions).
+        if (j <= i || !used[j]) continue;
+        const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
+        if (!boundaryLink) {
+          if (nextB[i] >= 0 && !inSector(i, j)) continue;
+          if (nextB[j] >= 0 && !inSector(j, i)) continue;
+          // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
+          // size) is not worth testing: dropped, its triangles come from the scaffold.
+          if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) {
+            ++longLinks;
+            continue;
+          }
+          if (grid.crosses(i, j)) continue;
         }
-        if (grid.crosses(i, j)) continue;
+        rowsOf[i].push_back(j);
       }
-      rowsOf[i].push_back(j);
-    }
-  }
+    });
+  failure.rethrow();
   for (int i = 0; i < n; ++i)
     for (int j : rowsOf[i])
       if (j > i) rowsOf[j].push_back(i);
@@ -240,28 +244,31 @@ void deleteNonSatellites(const PlacementResult& placement, Links& links, int thr
   };
   for (int round = 0; round < 50; ++round) {
     long tests = 0, crossings = 0;
+    ParallelFailure failure;  // liveRing allocates: rethrown after the region
 #pragma omp parallel num_threads(threads) reduction(+ : tests, crossings)
     {
       std::vector<int> ring;
 #pragma omp for schedule(dynamic, 256)
-      for (int p = 0; p < n; ++p) {
-        links.liveRing(p, ring);
-        const int m = int(ring.size());
-        if (m < 3) continue;
-        for (int j = 0; j < m; ++j) {
-          const int y = ring[(j + m - 1) % m], z = ring[j], w = ring[(j + 1) % m];
-          if (y == w || !links.linked(y, w)) continue;
-          ++tests;
-          if (!properCross(pos[p], pos[z], pos[y], pos[w])) continue;
-          ++crossings;
-          const Metric2 mAvg = 0.25 * (met[p] + met[z] + met[y] + met[w]);
-          if (swapCriterion(pos[p], pos[z], pos[y], pos[w], mAvg))
-            markDead(p, z);
-          else
-            markDead(y, w);
-        }
-      }
+      for (int p = 0; p < n; ++p)
+        failure.run(p, [&] {
+          links.liveRing(p, ring);
+          const int m = int(ring.size());
+          if (m < 3) return;
+          for (int j = 0; j < m; ++j) {
+            const int y = ring[(j + m - 1) % m], z = ring[j], w = ring[(j + 1) % m];
+            if (y == w || !links.linked(y, w)) continue;
+            ++tests;
+            if (!properCross(pos[p], pos[z], pos[y], pos[w])) continue;
+            ++crossings;
+            const Metric2 mAvg = 0.25 * (met[p] + met[z] + met[y] + met[w]);
+            if (swapCriterion(pos[p], pos[z], pos[y], pos[w], mAvg))
+              markDead(p, z);
+            else
+              markDead(y, w);
+          }
+        });
     }
+    failure.rethrow();
     st.intersectionTests += tests;
     st.crossingsFound += crossings;
     long deleted = 0;
@@ -281,6 +288,7 @@ void deleteNonSatellites(const PlacementResult& placement, Links& links, int thr
 std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, const Links& links, int threads) {
   const int n = int(pos.size());
   std::vector<std::vector<std::array<int, 3>>> perThread(threads);
+  ParallelFailure failure;  // liveRing and push_back allocate: rethrown after the region
 #pragma omp parallel num_threads(threads)
   {
     std::vector<int> ring, other;
@@ -293,18 +301,20 @@ std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, c
       return false;
     };
 #pragma omp for schedule(static)
-    for (int p = 0; p < n; ++p) {
-      links.liveRing(p, ring);
-      const int m = int(ring.size());
-      if (m < 2) continue;
-      for (int k = 0; k < m; ++k) {
-        const int s = ring[k], t = ring[(k + 1) % m];
-        if (s < p || t < p || s == t || !links.linked(s, t)) continue;
-        if (orient2d(pos[p], pos[s], pos[t]) <= 0) continue;
-        if (follows(s, t, p) && follows(t, p, s)) out.push_back({p, s, t});
-      }
-    }
+    for (int p = 0; p < n; ++p)
+      failure.run(p, [&] {
+        links.liveRing(p, ring);
+        const int m = int(ring.size());
+        if (m < 2) return;
+        for (int k = 0; k < m; ++k) {
+          const int s = ring[k], t = ring[(k + 1) % m];
+          if (s < p || t < p || s == t || !links.linked(s, t)) continue;
+          if (orient2d(pos[p], pos[s], pos[t]) <= 0) continue;
+          if (follows(s, t, p) && follows(t, p, s)) out.push_back({p, s, t});
+        }
+      });
   }
+  failure.rethrow();
   std::vector<std::array<int, 3>> consistent;
   for (auto& v : perThread) consistent.insert(consistent.end(), v.begin(), v.end());
   std::sort(consistent.begin(), consistent.end());

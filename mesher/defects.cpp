@@ -1,5 +1,6 @@
 #include "ablmg/mesher/defects.hpp"
 #include "ablmg/mesher/adjacency.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
 
 #include <algorithm>
@@ -53,22 +54,25 @@ LocalTopology localTopology(std::span<const Vec2> x, std::span<const Metric2> m,
   const int n = adj.size();
   std::vector<std::vector<int>> rows;
   rows.resize(std::size_t(n));
+  ParallelFailure failure;  // the cells allocate: rethrown after the region, the lowest node's
 #pragma omp parallel for schedule(dynamic, 256) if (n >= kMinParallelItems)
-  for (int i = 0; i < n; ++i) {
-    if (kinds[i] != NodeKind::Interior || i % stride != 0) continue;
-    std::vector<std::pair<Vec2, int>> pts;
-    for (int j : adj.neighbours(i)) pts.push_back({toMetric(m[i], x[j] - x[i]), j});
-    const std::vector<CellVertex> cell = voronoiCell(pts);
-    std::vector<int> ring;
-    bool closed = !cell.empty();
-    for (std::size_t k = 0; k < cell.size() && closed; ++k) {
-      if (cell[k].label < 0)
-        closed = false;
-      else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge)
-        ring.push_back(cell[k].label);
-    }
-    if (closed) rows[std::size_t(i)] = std::move(ring);
-  }
+  for (int i = 0; i < n; ++i)
+    failure.run(i, [&] {
+      if (kinds[i] != NodeKind::Interior || i % stride != 0) return;
+      std::vector<std::pair<Vec2, int>> pts;
+      for (int j : adj.neighbours(i)) pts.push_back({toMetric(m[i], x[j] - x[i]), j});
+      const std::vector<CellVertex> cell = voronoiCell(pts);
+      std::vector<int> ring;
+      bool closed = !cell.empty();
+      for (std::size_t k = 0; k < cell.size() && closed; ++k) {
+        if (cell[k].label < 0)
+          closed = false;
+        else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge)
+          ring.push_back(cell[k].label);
+      }
+      if (closed) rows[std::size_t(i)] = std::move(ring);
+    });
+  failure.rethrow();
   LocalTopology t;
   t.degree.assign(std::size_t(n), -1);
   for (int i = 0; i < n; ++i) {

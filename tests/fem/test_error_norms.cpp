@@ -6,7 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <cmath>
+#include <set>
+#include <string>
+#include <utility>
 
 using namespace ablmg;
 using namespace ablmg::fem;
@@ -56,4 +61,39 @@ TEST(ErrorNorms, ParallelIsBitwiseSerial) {
   EXPECT_EQ(a.h1, b.h1);
   EXPECT_EQ(a.l2Interp, b.l2Interp);
   EXPECT_EQ(a.elementH1, b.elementH1);
+}
+
+TEST(ErrorNorms, AnExactSolutionThrowingInTheParallelLoopGivesItsOwnError) {
+  // > 4096 triangles and threadSafe: the parallel path. The exact solution fails (NaN) at the
+  // quadrature points of a band x in (0.70, 0.72), never at a vertex (the vertex interpolant is
+  // taken serially first), so the error arises inside the OpenMP region, on several threads'
+  // triangles. It must come out as the callback's own InputError, the one of the lowest
+  // triangle, the same on 1 and 2 threads and in the serial loop; never std::terminate.
+  const Mesh2 m = unitSquareMesh(60, 0.2, 4);
+  std::set<std::pair<double, double>> vertices;
+  for (const Vec2& v : m.vertices) vertices.insert({v.x(), v.y()});
+  ExactSolution ex{[&](double x, double y) {
+                     const bool isVertex = vertices.count({x, y}) > 0;
+                     ABLMG_REQUIRE(isVertex || !(x > 0.70 && x < 0.72),
+                                   "exact solution: NaN at (" << x << ", " << y << ")");
+                     return x * y;
+                   },
+                   {},
+                   true};
+  const Eigen::VectorXd uh = Eigen::VectorXd::Zero(m.numVertices());
+  const auto message = [&](int threads) {
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    std::string what;
+    try {
+      computeErrors(m, uh, ex);
+    } catch (const InputError& e) { what = e.what(); }
+    omp_set_num_threads(before);
+    return what;
+  };
+  const std::string two = message(2);
+  EXPECT_EQ(two.rfind("exact solution: NaN at (0.7", 0), 0u) << two;
+  EXPECT_EQ(message(1), two);
+  ex.threadSafe = false;
+  EXPECT_EQ(message(2), two);
 }

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <string>
+
 using namespace ablmg;
 using namespace ablmg::fem;
 
@@ -132,6 +134,22 @@ TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
   p.threadSafeFunctions = true;
   p.kappa = ScalarFn([](double x, double) { return x < 0.9 ? 1.0 : -1.0; });
   EXPECT_THROW(assemble(m, p), InputError);
+  // The error is the lowest triangle's (the serial loop's), on any thread count.
+  const auto message = [&](bool parallel, int threads) {
+    p.threadSafeFunctions = parallel;
+    const int before = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    std::string what;
+    try {
+      assemble(m, p);
+    } catch (const InputError& e) { what = e.what(); }
+    omp_set_num_threads(before);
+    return what;
+  };
+  const std::string serial = message(false, 1);
+  EXPECT_EQ(serial.rfind("assemble: kappa = -1 at (0.9", 0), 0u) << serial;
+  EXPECT_EQ(message(true, 2), serial);
+  EXPECT_EQ(message(true, 1), serial);
 }
 
 TEST(PoissonProblem, LambdasConvertToScalarData) {
