@@ -1,6 +1,7 @@
 #include "ablmg/mesher/adjacency.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
 
+#include "ablmg/core/bucket_grid.hpp"
 #include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/point_box_tree.hpp"
 
@@ -10,6 +11,7 @@
 #include <cstdint>
 #include <numeric>
 #include <cmath>
+#include <optional>
 
 namespace ablmg::mesher {
 namespace {
@@ -23,6 +25,51 @@ constexpr int kMinParallelRows = 128;
 /// floating point lies in one node's box even when the rounding of the box's square roots and
 /// of the lengths falls the wrong way at its edge (the tree reports only points in the box).
 Vec2 searchBox(const Metric2& m, double radius) { return reachBox(m, radius) * (1 + 1e-9); }
+
+/// The nodes' search structure: a bucket grid of cells ≈ the mean spacing over the bounding
+/// box, or a 2-d tree (point_box_tree.hpp) when the grid is crowded (a node shares its cell
+/// with more than kCrowdedCell others on average: a boundary layer of anisotropy 10³–10⁴,
+/// where each query would scan hundreds of nodes per cell). On mild metrics the grid's queries
+/// are cheaper than the tree's. Both report every node in the box of weight ≥ wmin (the grid
+/// also some nearby ones: callers test the metric distance).
+class NodeIndex {
+ public:
+  static constexpr double kCrowdedCell = 16;
+
+  NodeIndex(std::span<const Vec2> x, std::span<const double> w) : w_(w) {
+    const int n = int(x.size());
+    Vec2 lo = x[0], hi = x[0];
+    for (const auto& p : x) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const double area = std::max((hi - lo).prod(), 1e-300);
+    grid_ = BucketGrid(lo, hi, std::max(std::sqrt(area / n), 1e-12 * (hi - lo).norm() + 1e-300), 4L * n + 16);
+    grid_.build(x);
+    double sharing = 0;  // Σ over nodes of the size of their cell
+    for (int c = 0; c < grid_.numCells(); ++c) sharing += double(grid_.cell(c).size()) * double(grid_.cell(c).size());
+    if (sharing > kCrowdedCell * n) {
+      grid_ = BucketGrid();
+      tree_.emplace(x, w);
+    }
+  }
+
+  template <class F>
+  void forEachInBoxFrom(const Vec2& p, double rx, double ry, double wmin, F&& f) const {
+    if (tree_) {
+      tree_->forEachInBoxFrom(p, rx, ry, wmin, f);
+      return;
+    }
+    grid_.forEachInBox(p, rx, ry, [&](int j) {
+      if (w_[std::size_t(j)] >= wmin) f(j);
+    });
+  }
+
+ private:
+  std::span<const double> w_;
+  BucketGrid grid_;
+  std::optional<PointBoxTree> tree_;
+};
 
 /// Box area of each node's reach box at radius 1: the weight that decides which node of a pair
 /// searches for it (the one with the smaller box; ties by the smaller id).
@@ -81,7 +128,7 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
   const int n = int(x.size());
   if (n == 0) return {};
   const std::vector<double> w = boxWeights(m);
-  const PointBoxTree tree(x, w);
+  const NodeIndex tree(x, w);
   // Each pair once, from its lighter node (kPairSearch); the transpose below adds the other way.
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
     const Vec2 R = searchBox(m[i], kPairSearch * radius);
@@ -398,7 +445,7 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
   std::vector<std::pair<int, int>> pairs;
   if (firstNew >= n) return pairs;
   const std::vector<double> w = boxWeights(m);
-  const PointBoxTree all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
+  const NodeIndex all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
 #pragma omp parallel if (n >= kMinParallelItems)
