@@ -26,12 +26,12 @@ inline Vec2 reachBox(const Metric2& m, double r) {
   return {r * std::sqrt(m.m22() / det), r * std::sqrt(m.m11() / det)};
 }
 
-/// Built from scratch with a 2-d tree of the nodes (point_box_tree.hpp; node i scans the bounding
-/// box of its ellipse {d : |d|_{M_i} ≤ r}: if the averaged distance is ≤ r then one of
-/// |d|_{M_i}, |d|_{M_j} is ≤ r, so the pair is found from i or from j; the rows are then
-/// symmetrised). O(N log N), with a cost per node that does not grow with the anisotropy or
-/// the grading (a bucket grid of the mean spacing scanned ~10³ nodes per node in a boundary
-/// layer). OpenMP.
+/// Built from scratch with a bucket grid of the nodes (cells ≈ mean spacing), or a 2-d tree
+/// (point_box_tree.hpp) when the grid's cells are crowded, as in a boundary layer where a
+/// cell holds hundreds of nodes. Node i scans the bounding box of its ellipse
+/// {d : |d|_{M_i} ≤ r}: if the averaged distance is ≤ r then one of |d|_{M_i}, |d|_{M_j} is
+/// ≤ r, so the pair is found from i or from j; the rows are then symmetrised. O(N) expected
+/// on the grid, O(N log N) on the tree, whatever the anisotropy or the grading. OpenMP.
 AdjacencyLists buildAdjacency(std::span<const Vec2> positions, std::span<const Metric2> metrics, double radius);
 
 /// Refresh after the bubbles moved (§3.3): candidates of i are i's list and its neighbours'
@@ -64,8 +64,8 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> positio
 
 /// After population edits: `old` lists of the previous nodes, `map` old → new id (−1 =
 /// deleted; empty = identity), new bubbles are ids firstNew … positions.size()−1. Rows of
-/// survivors are remapped; each new bubble searches a 2-d tree of all bubbles within its
-/// reach box, every bubble a tree of the new ones within its own, and pairs are linked both
+/// survivors are remapped; each new bubble searches all bubbles within its reach box, every
+/// bubble the new ones within its own (the search structures of buildAdjacency), and pairs are linked both
 /// ways. Equal to a rebuild when the survivors have not moved since `old` was built (the
 /// dynamics passes reference positions, for which that holds). O(N) with a small constant.
 AdjacencyLists patchAdjacency(const AdjacencyLists& old, std::span<const int> map, int firstNew,
