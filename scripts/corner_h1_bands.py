@@ -11,6 +11,7 @@ a degree-5 rule on 16 sub-triangles), the H1^2 and L2^2 shares and mean size of 
 the interpolant's H1 error and the Euclidean quality.
 """
 import sys, numpy as np, scipy.sparse as sp, scipy.sparse.linalg as spl
+from medit_arrays import read_medit
 omega = float(sys.argv[2]) if len(sys.argv) > 2 else 1.5*np.pi
 a = np.pi/omega
 def ang(x,y):
@@ -21,16 +22,7 @@ def u(x,y):
 def gu(x,y):
     r=np.hypot(x,y); t=ang(x,y); c=a*r**(a-1)
     return np.stack([c*np.sin((a-1)*t), c*np.cos((a-1)*t)],-1)
-def readmedit(fn):
-    tok=open(fn).read().split(); i=0; P=T=None
-    while i<len(tok):
-        if tok[i]=='Vertices':
-            n=int(tok[i+1]); P=np.array(tok[i+2:i+2+3*n],float).reshape(n,3)[:,:2]; i+=2+3*n
-        elif tok[i]=='Triangles':
-            n=int(tok[i+1]); T=np.array(tok[i+2:i+2+4*n],int).reshape(n,4)[:,:3]-1; i+=2+4*n
-        else: i+=1
-    return P,T
-P,T=readmedit(sys.argv[1])
+P,T=read_medit(sys.argv[1])
 n=len(P)
 # boundary vertices: edges used once
 e = np.sort(np.concatenate([T[:,[0,1]],T[:,[1,2]],T[:,[2,0]]]),axis=1)

@@ -16,6 +16,7 @@ distance d to the front, the triangles, shares of L2^2, H1^2 and of the dual-wei
 (signed and absolute), the largest edge and the area.
 """
 import sys, numpy as np, scipy.sparse as sp, scipy.sparse.linalg as spl
+from medit_arrays import read_medit
 al=float(sys.argv[2]) if len(sys.argv)>2 else 1000.; xc=yc=-0.05; r0=0.7
 def u(x,y): return np.arctan(al*(np.hypot(x-xc,y-yc)-r0))
 def f(x,y):
@@ -24,15 +25,6 @@ def f(x,y):
 def gu(x,y):
     r=np.hypot(x-xc,y-yc); s=r-r0; ur=al/(1+al*al*s*s)
     return np.stack([ur*(x-xc)/r, ur*(y-yc)/r],-1)
-def readmedit(fn):
-    tok=open(fn).read().split(); i=0
-    while i<len(tok):
-        if tok[i]=='Vertices':
-            n=int(tok[i+1]); P=np.array(tok[i+2:i+2+3*n],float).reshape(n,3)[:,:2]; i+=2+3*n
-        elif tok[i]=='Triangles':
-            n=int(tok[i+1]); T=np.array(tok[i+2:i+2+4*n],int).reshape(n,4)[:,:3]-1; i+=2+4*n
-        else: i+=1
-    return P,T
 # the 7-point degree-5 rule (Strang & Fix), barycentric (s, t) and weight
 q=np.array([[1/3,1/3,0.225],[0.0597158717,0.4701420641,0.1323941527],[0.4701420641,0.0597158717,0.1323941527],[0.4701420641,0.4701420641,0.1323941527],[0.7974269853,0.1012865073,0.1259391805],[0.1012865073,0.7974269853,0.1259391805],[0.1012865073,0.1012865073,0.1259391805]])
 def geom(P,T):
@@ -53,7 +45,7 @@ def solve(P,T,load,bcval):
     x=np.zeros(n); x[bv]=bcval(P[bv]); free=np.setdiff1d(np.arange(n),bv)
     rhs=b[free]-A[free][:,bv]@x[bv]; x[free]=spl.spsolve(A[free][:,free].tocsc(),rhs)
     return x,G,area
-P,T=readmedit(sys.argv[1]); n=len(P)
+P,T=read_medit(sys.argv[1]); n=len(P)
 uh,G,area=solve(P,T,lambda X,i,s,t: f(X[:,0],X[:,1]),lambda Q:u(Q[:,0],Q[:,1]))
 x0,d1,d2,_,_=geom(P,T)
 # refine once: midpoints

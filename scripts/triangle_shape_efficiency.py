@@ -15,18 +15,10 @@ orientation; the best P1 triangle for a saddle (right isosceles, legs along H's 
 bands of the distance r to the corner, and the Euclidean quality.
 """
 import sys, numpy as np
+from medit_arrays import read_medit
 omega = float(sys.argv[2]) if len(sys.argv) > 2 else 1.5 * np.pi
 a = np.pi / omega
-def readmedit(fn):
-    tok = open(fn).read().split(); i = 0; P = T = None
-    while i < len(tok):
-        if tok[i] == 'Vertices':
-            n = int(tok[i + 1]); P = np.array(tok[i + 2:i + 2 + 3 * n], float).reshape(n, 3)[:, :2]; i += 2 + 3 * n
-        elif tok[i] == 'Triangles':
-            n = int(tok[i + 1]); T = np.array(tok[i + 2:i + 2 + 4 * n], int).reshape(n, 4)[:, :3] - 1; i += 2 + 4 * n
-        else: i += 1
-    return P, T
-P, T = readmedit(sys.argv[1])
+P, T = read_medit(sys.argv[1])
 X = P[T]; c = X.mean(1)
 r = np.hypot(c[:, 0], c[:, 1]); th = np.arctan2(c[:, 1], c[:, 0]); th = np.where(th < 0, th + 2 * np.pi, th)
 # u = Im z^a: u_xx = Im f'', u_xy = Re f'', u_yy = -Im f'', f'' = a (a-1) z^(a-2)
