@@ -46,6 +46,38 @@ Cloud layerCloud(int n, std::uint64_t seed) {
   return c;
 }
 
+/// A population edit: c without its nodes i with i % k == r, then `extra` appended; map old →
+/// new id (−1 = deleted), new nodes from firstNew.
+struct EditedCloud {
+  Cloud cloud;
+  std::vector<int> map;
+  int firstNew = 0;
+};
+EditedCloud dropAndAppend(const Cloud& c, int k, int r, const Cloud& extra) {
+  EditedCloud e;
+  e.map.assign(c.x.size(), -1);
+  for (int i = 0; i < int(c.x.size()); ++i)
+    if (i % k != r) {
+      e.map[std::size_t(i)] = int(e.cloud.x.size());
+      e.cloud.x.push_back(c.x[std::size_t(i)]);
+      e.cloud.m.push_back(c.m[std::size_t(i)]);
+    }
+  e.firstNew = int(e.cloud.x.size());
+  e.cloud.x.insert(e.cloud.x.end(), extra.x.begin(), extra.x.end());
+  e.cloud.m.insert(e.cloud.m.end(), extra.m.begin(), extra.m.end());
+  return e;
+}
+
+/// The lists of `old` patched for the edit equal the lists rebuilt from scratch.
+void expectPatchEqualsRebuild(const AdjacencyLists& old, const EditedCloud& e) {
+  const Cloud& d = e.cloud;
+  const AdjacencyLists p = patchAdjacency(old, e.map, e.firstNew, d.x, d.m, 1.7);
+  const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
+  EXPECT_TRUE(p.isSymmetric());
+  EXPECT_EQ(p.offsets, b.offsets);
+  EXPECT_EQ(p.ids, b.ids);
+}
+
 std::vector<std::vector<int>> brute(const Cloud& c, double r) {
   std::vector<std::vector<int>> rows(c.x.size());
   for (int i = 0; i < int(c.x.size()); ++i)
@@ -173,26 +205,7 @@ TEST(Adjacency, IsSymmetricDetectsBrokenLists) {
 TEST(Adjacency, PatchAfterDeletionsAndInsertionsEqualsRebuild) {
   Cloud c = randomCloud(1500, 11);
   const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
-  // delete every 7th node, append 40 new ones
-  std::vector<int> map(c.x.size(), -1);
-  Cloud d;
-  for (int i = 0; i < int(c.x.size()); ++i)
-    if (i % 7 != 3) {
-      map[i] = int(d.x.size());
-      d.x.push_back(c.x[i]);
-      d.m.push_back(c.m[i]);
-    }
-  const int firstNew = int(d.x.size());
-  const Cloud extra = randomCloud(40, 12);
-  for (int k = 0; k < 40; ++k) {
-    d.x.push_back(extra.x[k]);
-    d.m.push_back(extra.m[k]);
-  }
-  const AdjacencyLists p = patchAdjacency(a, map, firstNew, d.x, d.m, 1.7);
-  const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
-  EXPECT_TRUE(p.isSymmetric());
-  EXPECT_EQ(p.offsets, b.offsets);
-  EXPECT_EQ(p.ids, b.ids);
+  expectPatchEqualsRebuild(a, dropAndAppend(c, 7, 3, randomCloud(40, 12)));  // every 7th node out, 40 in
 }
 
 // The 2-d tree's case: in the band a bucket grid of the mean spacing held hundreds of nodes
@@ -210,21 +223,5 @@ TEST(Adjacency, BuildAndPatchEqualBruteForceInAStretchedLayer) {
     total += long(row.size());
   }
   EXPECT_GT(total, 5 * 2500);
-  std::vector<int> map(c.x.size(), -1);
-  Cloud d;
-  for (int i = 0; i < int(c.x.size()); ++i)
-    if (i % 9 != 4) {
-      map[i] = int(d.x.size());
-      d.x.push_back(c.x[i]);
-      d.m.push_back(c.m[i]);
-    }
-  const int firstNew = int(d.x.size());
-  const Cloud extra = layerCloud(300, 6);
-  d.x.insert(d.x.end(), extra.x.begin(), extra.x.end());
-  d.m.insert(d.m.end(), extra.m.begin(), extra.m.end());
-  const AdjacencyLists p = patchAdjacency(a, map, firstNew, d.x, d.m, 1.7);
-  const AdjacencyLists b = buildAdjacency(d.x, d.m, 1.7);
-  EXPECT_TRUE(p.isSymmetric());
-  EXPECT_EQ(p.offsets, b.offsets);
-  EXPECT_EQ(p.ids, b.ids);
+  expectPatchEqualsRebuild(a, dropAndAppend(c, 9, 4, layerCloud(300, 6)));  // every 9th node out, 300 in
 }

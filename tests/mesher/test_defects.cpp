@@ -34,6 +34,16 @@ int at(int k, int r, int c) { return (r + k) * (2 * k + 1) + (c + k); }
 
 LocalTopology topologyOf(const Patch& p) { return localTopology(p.x, p.m, p.kinds, buildAdjacency(p.x, p.m, 1.7)); }
 
+/// A hexagonal patch with edge i–j pushed apart and its opposite nodes c, d pulled together.
+Patch quadrupolePatch(int i, int j, int c, int d) {
+  Patch p = hexPatch(6, Metric2::isotropic(1.0));
+  p.x[i].x() -= 0.2;
+  p.x[j].x() += 0.2;
+  p.x[c].y() -= 0.25;
+  p.x[d].y() += 0.25;
+  return p;
+}
+
 }  // namespace
 
 TEST(LocalTopology, HexagonalLatticeHasDegreeSixEverywhere) {
@@ -50,12 +60,8 @@ TEST(LocalTopology, HexagonalLatticeHasDegreeSixEverywhere) {
 TEST(LocalTopology, PushedEdgeMakesAQuadrupoleOfTwoFivesAndTwoSevens) {
   // Edge i–j (horizontal) with opposite nodes c (above) and d (below): pushing i, j apart and
   // pulling c, d together flips the edge to c–d: i, j drop to degree 5, c, d rise to 7.
-  Patch p = hexPatch(6, Metric2::isotropic(1.0));
   const int i = at(6, 0, 0), j = at(6, 0, 1), c = at(6, 1, 0), d = at(6, -1, 1);
-  p.x[i].x() -= 0.2;
-  p.x[j].x() += 0.2;
-  p.x[c].y() -= 0.25;
-  p.x[d].y() += 0.25;
+  const Patch p = quadrupolePatch(i, j, c, d);
   const LocalTopology t = topologyOf(p);
   EXPECT_EQ(t.degree[i], 5);
   EXPECT_EQ(t.degree[j], 5);
@@ -70,12 +76,8 @@ TEST(LocalTopology, PushedEdgeMakesAQuadrupoleOfTwoFivesAndTwoSevens) {
 TEST(LocalTopology, StrideSampleHasTheFullRowsOfItsNodesOnly) {
   // The quadrupole of the test above, sampled every 3rd node: each sampled node has its full
   // row, every other node none; the sample sees the defects that fall on it.
-  Patch p = hexPatch(6, Metric2::isotropic(1.0));
   const int i = at(6, 0, 0), j = at(6, 0, 1), c = at(6, 1, 0), d = at(6, -1, 1);
-  p.x[i].x() -= 0.2;
-  p.x[j].x() += 0.2;
-  p.x[c].y() -= 0.25;
-  p.x[d].y() += 0.25;
+  const Patch p = quadrupolePatch(i, j, c, d);
   const AdjacencyLists adj = buildAdjacency(p.x, p.m, 1.7);
   const LocalTopology full = localTopology(p.x, p.m, p.kinds, adj);
   const LocalTopology some = localTopology(p.x, p.m, p.kinds, adj, 0.05, 3);
