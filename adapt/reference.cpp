@@ -129,7 +129,8 @@ std::vector<double> interfaceCoverage(const Mesh2& input, const Mesh2& output) {
     grid.add(int(k), p, q);
   }
   for (std::size_t i = 0; i < covered.size(); ++i) {
-    const auto [a, b] = endpoints(input, input.interfaceEdges[i]);
+    const auto ends = endpoints(input, input.interfaceEdges[i]);
+    const Vec2 a = ends.first, b = ends.second;  // plain variables: lambdas below capture them
     const double len2 = (b - a).squaredNorm();
     const auto onLine = [&](const Vec2& p) { return std::abs(cross(b - a, p - a)) <= 1e-12 * len2; };
     const auto param = [&](const Vec2& p) { return (p - a).dot(b - a) / len2; };
