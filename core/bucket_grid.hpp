@@ -28,8 +28,10 @@ class BucketGrid {
   int numCells() const { return nx_ * ny_; }
   double cellSize() const { return cs_; }
   const Vec2& lo() const { return lo_; }
-  int cellX(double x) const { return std::clamp(int(std::floor((x - lo_.x()) / cs_)), 0, nx_ - 1); }
-  int cellY(double y) const { return std::clamp(int(std::floor((y - lo_.y()) / cs_)), 0, ny_ - 1); }
+  /// Clamped in floating point before the conversion: a query far outside the grid (a wide
+  /// reach box around a grid of a few close points) stays defined behaviour.
+  int cellX(double x) const { return int(std::clamp(std::floor((x - lo_.x()) / cs_), 0.0, double(nx_ - 1))); }
+  int cellY(double y) const { return int(std::clamp(std::floor((y - lo_.y()) / cs_), 0.0, double(ny_ - 1))); }
   int cellOf(const Vec2& p) const { return cellY(p.y()) * nx_ + cellX(p.x()); }
   Vec2 cellCentre(int c) const { return lo_ + Vec2((c % nx_ + 0.5) * cs_, (c / nx_ + 0.5) * cs_); }
 
