@@ -154,6 +154,24 @@ TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
   EXPECT_EQ(message(true, 1), serial);
 }
 
+// Above 20000 unknowns the pattern and the scatter are split by rows across the threads.
+TEST(Assemble, BitwiseSameOnOneAndTwoThreads) {
+  const Mesh2 m = unitSquareMesh(260, 0.2, 9);
+  const PoissonProblem p = makeProblem("tanhlayer").poisson();
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const LinearSystem one = assemble(m, p);
+  omp_set_num_threads(2);
+  const LinearSystem two = assemble(m, p);
+  omp_set_num_threads(saved);
+  ASSERT_GE(one.A.rows(), 20000);
+  ASSERT_EQ(one.A.nonZeros(), two.A.nonZeros());
+  EXPECT_TRUE(std::equal(one.A.outerIndexPtr(), one.A.outerIndexPtr() + one.A.rows() + 1, two.A.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(one.A.innerIndexPtr(), one.A.innerIndexPtr() + one.A.nonZeros(), two.A.innerIndexPtr()));
+  EXPECT_TRUE(std::equal(one.A.valuePtr(), one.A.valuePtr() + one.A.nonZeros(), two.A.valuePtr()));
+  EXPECT_TRUE(one.b == two.b);
+}
+
 TEST(PoissonProblem, LambdasConvertToScalarData) {
   PoissonProblem p;
   p.f = [](double x, double y) { return x + y; };
