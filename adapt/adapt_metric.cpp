@@ -40,10 +40,14 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
 }
 
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                  const AdaptOptions& options, std::span<const double> densityScale) {
-  ABLMG_REQUIRE(densityScale.empty() || long(densityScale.size()) == long(mesh.numVertices()),
-                "metricFromRecovered: " << densityScale.size() << " density factors for " << mesh.numVertices()
-                                        << " vertices");
+                                  const AdaptOptions& options, std::span<const double> densityScale,
+                                  std::span<const Hessian2> dualHessians) {
+  ABLMG_REQUIRE(
+      densityScale.empty() || long(densityScale.size()) == long(mesh.numVertices()),
+      "metricFromRecovered: " << densityScale.size() << " density factors for " << mesh.numVertices() << " vertices");
+  ABLMG_REQUIRE(
+      dualHessians.empty() || long(dualHessians.size()) == long(mesh.numVertices()),
+      "metricFromRecovered: " << dualHessians.size() << " dual Hessians for " << mesh.numVertices() << " vertices");
   Stopwatch watch;
   AdaptedMetric r;
   MetricOptions mo = options.metric;
@@ -57,18 +61,23 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     mo.hmax = std::max(0.25 * (hi - lo).norm(), 2 * mo.hmin);
   }
   auto& metric = r.metric;
-  if (options.l2Share > 0) {
+  const bool dual = options.dualShare > 0 && !dualHessians.empty();
+  mo.targetVertices = (1 - options.l2Share - (dual ? options.dualShare : 0.0)) * targetVertices;
+  metric = metricFromHessians(mesh, hessians, mo);
+  if (options.l2Share > 0) {  // ∩ M_2(u; φ N)
     MetricOptions m2 = mo;
     m2.p = 2;
     m2.targetVertices = options.l2Share * targetVertices;
-    mo.targetVertices = (1 - options.l2Share) * targetVertices;
-    metric = intersectFields(metricFromHessians(mesh, hessians, mo), metricFromHessians(mesh, hessians, m2));
-    mo.targetVertices = targetVertices;
-  } else {
-    metric = metricFromHessians(mesh, hessians, mo);
+    metric = intersectFields(metric, metricFromHessians(mesh, hessians, m2));
   }
+  if (dual) {  // ∩ M(z; φ_z N): the dual's own metric, same norm and bounds
+    MetricOptions mz = mo;
+    mz.targetVertices = options.dualShare * targetVertices;
+    metric = intersectFields(metric, metricFromHessians(mesh, dualHessians, mz));
+  }
+  mo.targetVertices = targetVertices;
   mo.hmax = effectiveHmax(mesh, mo);
-  if (options.hgrad > 1 || options.l2Share > 0) {
+  if (options.hgrad > 1 || options.l2Share > 0 || dual) {
     if (options.hgrad > 1) {
       GradationOptions go;
       go.hgrad = options.hgrad;

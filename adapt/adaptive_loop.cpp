@@ -20,6 +20,9 @@ void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "adapt options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
   ABLMG_REQUIRE(o.l2Share >= 0 && o.l2Share < 1, "adapt options: l2Share must be in [0, 1) (got " << o.l2Share << ")");
+  ABLMG_REQUIRE(o.dualShare >= 0 && o.l2Share + o.dualShare < 1,
+                "adapt options: dualShare must be >= 0 with l2Share + dualShare < 1 (got " << o.dualShare << " and "
+                                                                                           << o.l2Share << ")");
   ABLMG_REQUIRE(o.dualWeight >= 0 && std::isfinite(o.dualWeight),
                 "adapt options: dualWeight must be >= 0 (got " << o.dualWeight << ")");
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
@@ -79,15 +82,27 @@ AdaptReport runAdaptiveLoop(const fem::TestProblem& problem, const AdaptOptions&
 }
 
 namespace {
-/// The dual-weighted density factor of dual_weight.hpp (empty when off or when the problem has no
-/// Dirichlet boundary: the unit-load dual would have no solution).
-std::vector<double> dualWeightScale(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
-                                    const AdaptOptions& options) {
-  if (options.dualWeight <= 0 || (problem.dirichlet.empty() && !problem.hasDirichletDefault)) return {};
+/// What the unit-load dual of dual_weight.hpp gives the next metric: the density factor
+/// (options.dualWeight) and the dual's recovered Hessians (options.dualShare); each empty when off
+/// or when the problem has no Dirichlet boundary (the unit-load dual would have no solution).
+struct DualCorrection {
+  std::vector<double> scale;
+  std::vector<Hessian2> hessians;
+};
+DualCorrection dualCorrection(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
+                              const AdaptOptions& options) {
+  DualCorrection d;
+  if ((options.dualWeight <= 0 && options.dualShare <= 0) ||
+      (problem.dirichlet.empty() && !problem.hasDirichletDefault))
+    return d;
   const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
-  const auto eta = dualWeightedIndicators(mesh, std::span<const double>(u.data(), u.size()),
-                                          std::span<const double>(z.u.data(), z.u.size()));
-  return adapt::dualWeightScale(mesh, eta, options.dualWeight);
+  const std::span<const double> zv(z.u.data(), std::size_t(z.u.size()));
+  if (options.dualWeight > 0)
+    d.scale = adapt::dualWeightScale(
+        mesh, dualWeightedIndicators(mesh, std::span<const double>(u.data(), std::size_t(u.size())), zv),
+        options.dualWeight);
+  if (options.dualShare > 0) d.hessians = recoverHessians(mesh, zv, options.hessian);
+  return d;
 }
 void requireMeshIndependent(const AdaptProblem& p) {
   const auto check = [](const fem::ScalarData& d, const std::string& what) {
@@ -269,13 +284,14 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
       reportStage(options, "metric", s, cycles, row.vertices);
-      const std::vector<double> scale = dualWeightScale(current.mesh, sol.u, poisson, options);
-      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
+      const DualCorrection dual = dualCorrection(current.mesh, sol.u, poisson, options);
+      AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);
       row.metricChange = metricChange(current.metric, a.metric);
       const int skipTo = repeatsToSkip(options, s, cycles, row.metricChange);
       if (skipTo > s) {
         s = skipTo;
-        if (target(s + 1) != target(s)) a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
+        if (target(s + 1) != target(s))
+          a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);
       }
       next = std::move(a.metric);
       row.tMetric = a.secondsMetric;

@@ -144,6 +144,14 @@ struct AdaptOptions {
   /// corners unchanged (±0.02); the layer's and the line singularity's L2 rates fall to −0.63 and
   /// −0.50. 0 = off (and in adaptMetric, which has no problem to solve the dual of).
   double dualWeight = 0.25;
+  /// φ_z ∈ [0, 1), φ + φ_z < 1: a share of the complexity for the metric of the unit-load dual
+  /// z_h (the dual of dualWeight; its recovered Hessian, the same p and bounds), intersected
+  /// with u's: M(u; (1 − φ − φ_z) N) ∩ M(z; φ_z N). Why (adapt/dual_weight.hpp, "Anisotropy"):
+  /// on a triangle stretched along u's flat direction the gradient error of z's interpolant
+  /// across it is h_long²/h_short · |∂²z/∂long²|, so the FE L2 error's term ∇e·∇(z − z_h) grows
+  /// with the aspect ratio the Hessian of u allows; M(z) bounds h_long where z is curved.
+  /// Default 0.01 (measured in dual_weight.hpp); 0 = off (no dual Hessian recovery).
+  double dualShare = 0.01;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
@@ -306,7 +314,10 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
 /// adaptMetric's second half, on Hessians already recovered (one per vertex of `mesh`).
 /// `densityScale` (empty, or one factor > 0 per vertex): the graded metric is multiplied by it
 /// and rescaled to the target complexity (dual_weight.hpp).
+/// `dualHessians` (empty, or one per vertex): the recovered Hessians of the dual z_h; with
+/// options.dualShare φ_z > 0 the metric is M(u; (1 − φ − φ_z) N) ∩ M(z; φ_z N) before gradation.
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
-                                  const AdaptOptions& options, std::span<const double> densityScale = {});
+                                  const AdaptOptions& options, std::span<const double> densityScale = {},
+                                  std::span<const Hessian2> dualHessians = {});
 
 }  // namespace ablmg::adapt

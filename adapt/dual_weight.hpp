@@ -41,6 +41,25 @@
 /// One step from the loop's 1.4·10⁴-vertex mesh of the wave front α = 1000 to 2.8·10⁴ vertices
 /// (remeshed by the same mesher; errors of the new mesh; scripts/front_l2_dwr.py): L2 4.8·10⁻⁴
 /// → 2.6·10⁻⁴ at H1 0.58 → 0.60 (the true dual and ∇e: 2.4·10⁻⁴, 0.63; γ = ½: 3.8·10⁻⁴, 0.89).
+///
+/// Anisotropy (AdaptOptions::dualShare). On a triangle stretched along a direction where u is flat
+/// (u_xx = 0, sizes h_x ≫ h_y, metric-equilateral), the interpolant of a dual curved along x has
+/// the gradient error h_x²/(8 h_y) · z_xx across the triangle (P1 on the vertices (0, 0), (h_x, 0),
+/// (h_x/2, h_y) of z = x²/2), so per unit area ∇(u − Πu)·∇(z − Πz) ≈ |u_yy| (h_y² |z_yy| +
+/// h_x² |z_xx|): the L2 error is set by h_x where z is curved, however fine h_y. The density factor
+/// above cannot fix it (it scales both sizes); the dual's own metric M(z; φ_z N), intersected with
+/// u's, bounds h_x (the L2-goal metric of the term would be built on |u_yy|·|H_z|, M. Loseille,
+/// A. Dervieux, F. Alauzet, J. Comput. Phys. 229 (2010) 2866–2897). Measured on the line
+/// singularity (u = cos(πy/2) where s < 0: x-aligned triangles of aspect ≈ 50 there at 3·10⁴
+/// vertices hold 99 % of the L2² error as a smooth bump 4× the interpolation error's size):
+/// `--max-aniso 10` makes its FE L2 error its interpolation error (rate −1.06) but its H1 1.00×
+/// FreeFem's. Worst ratios to FreeFem++ and L2 rate (run.sh's stored loops at 2–4·10⁴, seeds 1, 2)
+/// for φ_z = 0 / 0.01 / 0.02 / 0.05: line singularity 0.22/0.87, −0.18 → 0.21/0.88, −0.1 →
+/// 0.10/0.93, −0.84 → 0.08/1.00, −1.04; steep front 0.74/0.38, −0.84 → 0.68/0.39, −0.92 →
+/// 0.71/0.39, −0.88 → 0.68/0.39, −0.9; tanh layer 0.02/0.49, −0.64 → 0.04/0.54, −0.63 →
+/// 0.06/0.58, −0.66 → 0.11/0.66, −0.75 (its stretching is what its H1 needs: an anisotropy cap of
+/// 3000 gives L2 0.16 and H1 0.87). 0.01 is the default: the line singularity's H1 bar (0.9) stops
+/// it below 0.02; the other seven problems move by ≤ 0.05 (multiple's L2 0.50 → 0.45).
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/fem/poisson_problem.hpp"
 #include <span>

@@ -2,6 +2,7 @@
 // gradation at a target complexity) and metricQuality().
 #include "ablmg/adapt/adaptive_loop.hpp"
 #include "ablmg/adapt/gradation.hpp"
+#include "ablmg/adapt/hessian_recovery.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/error_norms.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
@@ -94,5 +95,47 @@ TEST(AdaptMetric, L2ShareKeepsTheComplexityAndMovesDensityToTheFarField) {
   }
   AdaptOptions bad;
   bad.l2Share = 1;
+  EXPECT_THROW(validate(bad), InputError);
+}
+
+// dualShare φ_z: M(u; (1 − φ_z) N) ∩ M(z; φ_z N), rescaled to N. A u curved in y alone (u_xx = 0)
+// lets M(u) stretch along x up to hmax; a dual curved in x bounds that length.
+TEST(AdaptMetric, DualShareBoundsTheAnisotropyOfAFlatDirectionAtTheSameComplexity) {
+  const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);
+  std::vector<double> u(mesh.numVertices()), z(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    const Vec2& p = mesh.vertices[v];
+    u[v] = p.y() * p.y();
+    z[v] = p.x() * (1 - p.x()) * p.y() * (1 - p.y());
+  }
+  AdaptOptions o;
+  const auto hu = recoverHessians(mesh, u, o.hessian);
+  const auto hz = recoverHessians(mesh, z, o.hessian);
+  auto worstAspect = [&](double share, bool withDual) {
+    o.dualShare = share;
+    const auto m = metricFromRecovered(mesh, hu, 4000, o, {},
+                                       withDual ? std::span<const Hessian2>(hz) : std::span<const Hessian2>())
+                       .metric;
+    EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(4000), 1.0, 0.01) << share;
+    double worst = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v)
+      if ((mesh.vertices[v] - Vec2(0.5, 0.5)).lpNorm<Eigen::Infinity>() < 0.3) {
+        const MetricEigen e = m[v].eigen();
+        worst = std::max(worst, e.h1 / e.h2);
+      }
+    return worst;
+  };
+  const double off = worstAspect(0, true);
+  EXPECT_EQ(worstAspect(0.2, false), off);  // no dual Hessians given: no intersection
+  EXPECT_GT(off, 300);                      // h_x at hmax (a quarter of the diagonal), h_y from u_yy = 2
+  EXPECT_LT(worstAspect(0.05, true), 0.3 * off);
+  EXPECT_LT(worstAspect(0.2, true), 0.15 * off);
+  std::vector<Hessian2> few(hz.begin(), hz.begin() + 3);
+  EXPECT_THROW(metricFromRecovered(mesh, hu, 4000, o, {}, few), InputError);
+  AdaptOptions bad;
+  bad.dualShare = -0.1;
+  EXPECT_THROW(validate(bad), InputError);
+  bad.dualShare = 0.5;
+  bad.l2Share = 0.5;
   EXPECT_THROW(validate(bad), InputError);
 }
