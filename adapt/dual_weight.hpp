@@ -53,8 +53,8 @@
 /// singularity (u = cos(πy/2) where s < 0: x-aligned triangles of aspect ≈ 50 there at 3·10⁴
 /// vertices hold 99 % of the L2² error as a smooth bump 4× the interpolation error's size):
 /// `--max-aniso 10` makes its FE L2 error its interpolation error (rate −1.06) but its H1 1.00×
-/// FreeFem's. Worst ratios to FreeFem++ and L2 rate (run.sh's stored loops at 2–4·10⁴, seeds 1, 2)
-/// for φ_z = 0 / 0.01 / 0.02 / 0.05: line singularity 0.22/0.87, −0.18 → 0.21/0.88, −0.1 →
+/// FreeFem's. Worst ratios to FreeFem++ and L2 rate (run.sh's stored loops at 2–4·10⁴, means of seeds 1, 2)
+/// for φ_z = 0 / 0.01 / 0.02 / 0.05: line singularity 0.22/0.87, −0.18 → 0.21/0.88, −0.13 →
 /// 0.10/0.93, −0.84 → 0.08/1.00, −1.04; steep front 0.74/0.38, −0.84 → 0.68/0.39, −0.92 →
 /// 0.71/0.39, −0.88 → 0.68/0.39, −0.9; tanh layer 0.02/0.49, −0.64 → 0.04/0.54, −0.63 →
 /// 0.06/0.58, −0.66 → 0.11/0.66, −0.75 (its stretching is what its H1 needs: an anisotropy cap of
