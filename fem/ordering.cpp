@@ -5,8 +5,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
-#include <limits>
+#include <cstdint>
 #include <memory>
 
 #include <amd.h>
@@ -90,28 +91,33 @@ struct Dissection {
     return c[half];
   }
 
-  /// Size of the separator that the cut at m along d would give: the middle {c = m} plus the
-  /// smaller of (lower vertices touching upper) and (upper vertices touching lower), counted
-  /// on the piece's own edges (stamp s marks the piece).
-  long separatorSize(const std::vector<int>& set, int d, double m, int s) const {
-    long middle = 0, lowerTouching = 0, upperTouching = 0;
+  /// Sizes of the separators that the cuts at m[d] along each direction d would give: the
+  /// middle {c = m} plus the smaller of (lower vertices touching upper) and (upper vertices
+  /// touching lower), counted on the piece's own edges (stamp s marks the piece). One pass
+  /// over the piece for the four directions (each vertex's point and reaches read once).
+  void separatorSizes(const std::vector<int>& set, const double (&m)[4], int s, long (&size)[4]) const {
+    long middle[4] = {0, 0, 0, 0}, lowerTouching[4] = {0, 0, 0, 0}, upperTouching[4] = {0, 0, 0, 0};
     for (int v : set) {
-      const double c = along(points[v], d);
-      if (c == m) {
-        ++middle;
-        continue;
-      }
-      if (std::abs(c - m) > double(reach[4 * std::size_t(v) + std::size_t(d)])) continue;
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it) {
-        const int w = int(it.index());
-        const double cw = along(points[w], d);
-        if (((c < m && cw > m) || (c > m && cw < m)) && markOf(w) == s) {
-          ++(c < m ? lowerTouching : upperTouching);
-          break;
+      const Vec2 p = points[v];
+      const float* r = &reach[4 * std::size_t(v)];
+      for (int d = 0; d < 4; ++d) {
+        const double c = along(p, d);
+        if (c == m[d]) {
+          ++middle[d];
+          continue;
+        }
+        if (std::abs(c - m[d]) > double(r[d])) continue;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it) {
+          const int w = int(it.index());
+          const double cw = along(points[w], d);
+          if (((c < m[d] && cw > m[d]) || (c > m[d] && cw < m[d])) && markOf(w) == s) {
+            ++(c < m[d] ? lowerTouching[d] : upperTouching[d]);
+            break;
+          }
         }
       }
     }
-    return middle + std::min(lowerTouching, upperTouching);
+    for (int d = 0; d < 4; ++d) size[d] = middle[d] + std::min(lowerTouching[d], upperTouching[d]);
   }
 
   struct Cut {
@@ -142,12 +148,11 @@ struct Dissection {
         lo[d] = std::min(lo[d], c);
         hi[d] = std::max(hi[d], c);
       }
+    for (int d = 0; d < 4; ++d) median[d] = medianAlong(set, d, true);
+    separatorSizes(set, median, s, size);
     int best = 0;
-    for (int d = 0; d < 4; ++d) {
-      median[d] = medianAlong(set, d, true);
-      size[d] = separatorSize(set, d, median[d], s);
+    for (int d = 0; d < 4; ++d)
       if (size[d] < size[best]) best = d;
-    }
     const auto extent = [&](int d) { return (hi[d] - lo[d]) * (d < 2 ? 1.0 : std::sqrt(0.5)); };
     int chosen = best;
     for (int d = 0; d < 4; ++d)
@@ -239,6 +244,9 @@ struct Dissection {
   }
 };
 
+/// std::nextafter(f, +∞) for a finite f ≥ 0 (the next float up), without the libm call.
+float nextUp(float f) { return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + 1u); }
+
 }  // namespace
 
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
@@ -268,8 +276,7 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
         double r = 0;
         for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it)
           r = std::max(r, std::abs(Dissection::along(points[it.index()], dir) - c));
-        d.reach[4 * std::size_t(v) + std::size_t(dir)] =
-            std::nextafter(float(r), std::numeric_limits<float>::infinity());
+        d.reach[4 * std::size_t(v) + std::size_t(dir)] = nextUp(float(r));
       }
   }
   std::vector<int> all(n);
