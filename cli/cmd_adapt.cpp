@@ -359,18 +359,10 @@ times for each cycle's mesh.
 preset with the flags above applied) and exit; the problem and the schedule may be omitted.
 )";
 
-int runAdapt(const std::vector<std::string>& argv) {
-  for (const auto& x : argv)
-    if (x == "-h" || x == "--help") {
-      std::cout << kAdaptHelp;
-      return 0;
-    }
-  Args a = parseArgs(argv);
-  if (a.printOptions) {
-    printEffectiveOptions("adapt", "adapt", a.options.mesh, loopOptionsJson(a, int(a.options.targetVertices.size())));
-    return 0;
-  }
-  Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
+/// The problem with the reference solution as its "exact" one when it has none of its own and
+/// --reference-vertices (or the material problems' default) asks for one; returns the reference
+/// mesh's vertex count (0: none).
+long attachReferenceSolution(const Args& a, Problem& problem) {
   const double referenceVertices =
       a.referenceVertices >= 0 ? a.referenceVertices
       : problem.data.regions.numTriangles() > 0 && !problem.data.exact
@@ -378,25 +370,21 @@ int runAdapt(const std::vector<std::string>& argv) {
           : 0.0;
   ABLMG_REQUIRE(referenceVertices == 0 || !problem.data.exact,
                 "adapt: --reference-vertices is for a problem without an exact solution");
-  long referenceMeshVertices = 0;
-  if (referenceVertices > 0) {  // 0. The reference solution: the same loop, to many more vertices.
-    std::cout << "ablmg adapt: reference solution: the loop to " << referenceVertices << " vertices" << std::endl;
-    adapt::AdaptOptions ro = a.options;
-    ProgressLine referenceProgress("reference", a.verbosity);
-    ro.progress = referenceProgress.callback();
-    adapt::ReferenceSolution ref = adapt::referenceSolution(problem.data, referenceVertices, ro);
-    referenceProgress.clear();
-    referenceMeshVertices = ref.vertices;
-    problem.data.exact = std::move(ref.exact);
-    problem.echo["reference_vertices"] = referenceMeshVertices;
-  }
-  const bool exact = problem.data.exact.has_value();
-  namespace fs = std::filesystem;
-  fs::create_directories(a.outDir);
+  if (referenceVertices <= 0) return 0;
+  std::cout << "ablmg adapt: reference solution: the loop to " << referenceVertices << " vertices" << std::endl;
+  adapt::AdaptOptions ro = a.options;
+  ProgressLine referenceProgress("reference", a.verbosity);
+  ro.progress = referenceProgress.callback();
+  adapt::ReferenceSolution ref = adapt::referenceSolution(problem.data, referenceVertices, ro);
+  referenceProgress.clear();
+  problem.data.exact = std::move(ref.exact);
+  problem.echo["reference_vertices"] = ref.vertices;
+  return ref.vertices;
+}
 
-  // 1. Resolved options.
+void printResolvedOptions(const Args& a, const Problem& problem, long referenceMeshVertices) {
   std::cout << "ablmg adapt: problem " << problem.name << ": " << problem.echo.dump();
-  if (!exact) std::cout << "\n  no exact solution: errors are not computed (NaN in the reports)";
+  if (!problem.data.exact) std::cout << "\n  no exact solution: errors are not computed (NaN in the reports)";
   if (referenceMeshVertices > 0)
     std::cout << "\n  errors against the reference solution on " << referenceMeshVertices
               << " vertices (not an exact solution: meaningful while N is well below it)";
@@ -411,71 +399,77 @@ int runAdapt(const std::vector<std::string>& argv) {
             << (a.options.hgrad > 1 ? fmt("%g", a.options.hgrad) : "off") << ", lattice "
             << mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation) << ", seed "
             << a.options.mesh.placement.seed << "\n  output " << a.outDir << "\n";
+}
 
-  // 2. The loop; each cycle prints its line and writes its .vtu.
-  Mesh2 finalMesh;
-  ProgressLine progress("adapt", a.verbosity);
-  a.options.progress = progress.callback();
-  const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem.data, a.options, [&](const adapt::CycleData& c) {
-    const auto& r = c.report;
-    progress.clear();
-    std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
-    if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
-    std::printf(" est=%.3e", r.l2InterpEstimate);
-    if (std::isfinite(r.metricChange)) std::printf(" dM=%.3f", r.metricChange);
+/// The `Cycle k:` line; with -v 2 also the mesher's stage times.
+void printCycle(const adapt::CycleReport& r, bool exact, int verbosity) {
+  std::printf("Cycle %d: N=%ld T=%ld", r.cycle, r.vertices, r.triangles);
+  if (exact) std::printf(" L2=%.3e H1=%.3e L2interp=%.3e", r.l2, r.h1, r.l2Interp);
+  std::printf(" est=%.3e", r.l2InterpEstimate);
+  if (std::isfinite(r.metricChange)) std::printf(" dM=%.3f", r.metricChange);
+  std::printf(
+      " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
+      "metric %.2fs mesh %.2fs\n",
+      r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
+  if (verbosity >= 2) {
+    const auto& p = r.meshStats.placement;
     std::printf(
-        " q=%.3f/%.3f  t: solve %.2fs (assembly %.2f ordering %.2f factor %.2f) errors %.2fs recover %.2fs "
-        "metric %.2fs mesh %.2fs\n",
-        r.qMean, r.qMin, r.tSolve, r.tAssembly, r.tOrdering, r.tFactor, r.tErrors, r.tRecover, r.tMetric, r.tMesh);
-    if (a.verbosity >= 2) {
-      const auto& p = r.meshStats.placement;
-      std::printf(
-          "  mesh %d: placement %.2fs (initial %.2f, dynamics %.2f in %d steps%s, adjacency %.2f, population "
-          "%.2f: +%ld -%ld), connection %.2fs, quality post-pass %.2fs (q min %.3f -> %.3f, %ld swaps, %ld "
-          "moves, %ld collapses), validation %.2fs\n",
-          r.cycle, p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation, p.secondsInitial,
-          p.secondsDynamics, p.steps,
-          p.qualityPlateau ? " (quality plateau)"
-          : p.stalled      ? " (stalled)"
-          : p.hitStepCap   ? " (step cap)"
-                           : "",
-          p.secondsAdjacency, p.secondsPopulation, p.inserted, p.deleted,
-          r.meshStats.connect.secondsLocalMeshes + r.meshStats.connect.secondsRepair, r.meshStats.improve.seconds,
-          r.meshStats.improve.qMinBefore, r.meshStats.improve.qMinAfter, long(r.meshStats.improve.swaps),
-          long(r.meshStats.improve.moves), long(r.meshStats.improve.collapses), r.meshStats.secondsValidate);
-    }
-    std::fflush(stdout);
-    if (a.vtu) {
-      const int n = c.mesh.numVertices();
-      io::Field uh{"u", 1, std::vector<double>(c.u.data(), c.u.data() + n)}, ue{"u_exact", 1, {}}, err{"error", 1, {}};
-      std::vector<io::Field> points{uh}, cells;
-      if (exact) {
-        for (int v = 0; v < n; ++v) {
-          ue.values.push_back(problem.data.exact->u(c.mesh.vertices[v].x(), c.mesh.vertices[v].y()));
-          err.values.push_back(ue.values.back() - uh.values[v]);
-        }
-        points.push_back(ue);
-        points.push_back(err);
-        cells.push_back({"l2_error", 1, c.errors.elementL2});
-        if (!c.errors.elementH1.empty()) cells.push_back({"h1_error", 1, c.errors.elementH1});
-      }
-      for (auto& f : io::metricFields(c.meshMetric)) points.push_back(std::move(f));
-      auto quality = qualityFields(c.mesh, c.meshMetric);
-      for (auto& f : quality.point) points.push_back(std::move(f));
-      for (auto& f : quality.cell) cells.push_back(std::move(f));
-      io::writeVtu((fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle) + ".vtu")).string(), c.mesh, points,
-                   cells);
-    }
-    if (a.medit) {  // the mesh and the metric computed on it for the next cycle, as MMG/FreeFem++ read them
-      const std::string stem = (fs::path(a.outDir) / ("cycle_" + std::to_string(r.cycle))).string();
-      io::writeMesh(stem + ".mesh", c.mesh);
-      if (!c.nextMetric.empty()) io::writeSol(stem + "_metric.sol", c.nextMetric);
-    }
-    if (c.nextMetric.empty()) finalMesh = c.mesh;
-  });
-  progress.clear();
+        "  mesh %d: placement %.2fs (initial %.2f, dynamics %.2f in %d steps%s, adjacency %.2f, population "
+        "%.2f: +%ld -%ld), connection %.2fs, quality post-pass %.2fs (q min %.3f -> %.3f, %ld swaps, %ld "
+        "moves, %ld collapses), validation %.2fs\n",
+        r.cycle, p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation, p.secondsInitial,
+        p.secondsDynamics, p.steps,
+        p.qualityPlateau ? " (quality plateau)"
+        : p.stalled      ? " (stalled)"
+        : p.hitStepCap   ? " (step cap)"
+                         : "",
+        p.secondsAdjacency, p.secondsPopulation, p.inserted, p.deleted,
+        r.meshStats.connect.secondsLocalMeshes + r.meshStats.connect.secondsRepair, r.meshStats.improve.seconds,
+        r.meshStats.improve.qMinBefore, r.meshStats.improve.qMinAfter, long(r.meshStats.improve.swaps),
+        long(r.meshStats.improve.moves), long(r.meshStats.improve.collapses), r.meshStats.secondsValidate);
+  }
+  std::fflush(stdout);
+}
 
-  // 3. Rates and the error check.
+/// DIR/cycle_K.vtu (mesh, u_h, exact u and nodal error, per-element errors, metric, quality) and,
+/// with --medit on, DIR/cycle_K.mesh + DIR/cycle_K_metric.sol (the metric for the next cycle).
+void writeCycleFiles(const Args& a, const Problem& problem, const adapt::CycleData& c) {
+  namespace fs = std::filesystem;
+  const std::string stem = (fs::path(a.outDir) / ("cycle_" + std::to_string(c.report.cycle))).string();
+  if (a.vtu) {
+    const int n = c.mesh.numVertices();
+    io::Field uh{"u", 1, std::vector<double>(c.u.data(), c.u.data() + n)}, ue{"u_exact", 1, {}}, err{"error", 1, {}};
+    std::vector<io::Field> points{uh}, cells;
+    if (problem.data.exact) {
+      for (int v = 0; v < n; ++v) {
+        ue.values.push_back(problem.data.exact->u(c.mesh.vertices[v].x(), c.mesh.vertices[v].y()));
+        err.values.push_back(ue.values.back() - uh.values[v]);
+      }
+      points.push_back(ue);
+      points.push_back(err);
+      cells.push_back({"l2_error", 1, c.errors.elementL2});
+      if (!c.errors.elementH1.empty()) cells.push_back({"h1_error", 1, c.errors.elementH1});
+    }
+    for (auto& f : io::metricFields(c.meshMetric)) points.push_back(std::move(f));
+    auto quality = qualityFields(c.mesh, c.meshMetric);
+    for (auto& f : quality.point) points.push_back(std::move(f));
+    for (auto& f : quality.cell) cells.push_back(std::move(f));
+    io::writeVtu(stem + ".vtu", c.mesh, points, cells);
+  }
+  if (a.medit) {  // as MMG/FreeFem++ read them
+    io::writeMesh(stem + ".mesh", c.mesh);
+    if (!c.nextMetric.empty()) io::writeSol(stem + "_metric.sol", c.nextMetric);
+  }
+}
+
+/// How much of the materials' interfaces the final mesh leaves off its interface edges.
+struct InterfaceCheck {
+  double uncovered = 0, length = 0;
+};
+
+/// Rates, the error check, and (with materials) the interface check, on stdout.
+InterfaceCheck printSummary(const adapt::AdaptReport& report, const Problem& problem, const Mesh2& finalMesh) {
+  const bool exact = problem.data.exact.has_value();
   if (exact) {
     std::printf(
         "Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
@@ -485,19 +479,21 @@ int runAdapt(const std::vector<std::string>& argv) {
   std::printf("Estimated interpolation error (recovered Hessian, est=): rate %.3f over the last %d cycles%s\n",
               report.l2InterpEstimateRate, report.rateWindow, exact ? "; compare L2interp" : " (optimal P1: -1)");
   if (report.stoppedEarly) std::printf("Stopped after cycle %d: error target reached\n", report.cycles.back().cycle);
-  const bool regions = problem.data.regions.numTriangles() > 0;
-  double uncovered = 0, interfaceLength = 0;
-  if (regions) {  // every interface edge of the regions on a chain of the final mesh's interface edges
-    uncovered = adapt::uncoveredInterfaceLength(problem.data.regions, finalMesh);
-    for (const auto& e : problem.data.regions.interfaceEdges)
-      interfaceLength +=
-          (problem.data.regions.vertices[std::size_t(e.b)] - problem.data.regions.vertices[std::size_t(e.a)]).norm();
-    std::printf("Interfaces in the final mesh: %.3g of their length %.4g not on final interface edges (%s)\n",
-                uncovered, interfaceLength, uncovered <= 1e-9 * interfaceLength ? "resolved" : "NOT RESOLVED");
-  }
+  InterfaceCheck check;
+  const Mesh2& regions = problem.data.regions;
+  if (regions.numTriangles() == 0) return check;
+  check.uncovered = adapt::uncoveredInterfaceLength(regions, finalMesh);
+  for (const auto& e : regions.interfaceEdges)
+    check.length += (regions.vertices[std::size_t(e.b)] - regions.vertices[std::size_t(e.a)]).norm();
+  std::printf("Interfaces in the final mesh: %.3g of their length %.4g not on final interface edges (%s)\n",
+              check.uncovered, check.length, check.uncovered <= 1e-9 * check.length ? "resolved" : "NOT RESOLVED");
+  return check;
+}
 
-  // 4. Reports: CSV, JSON.
-  io::writeFileAtomically((fs::path(a.outDir) / "convergence.csv").string(), [&](std::ostream& os) {
+nlohmann::json finiteOrNull(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+void writeCsv(const std::string& path, const adapt::AdaptReport& report) {
+  io::writeFileAtomically(path, [&](std::ostream& os) {
     os << kCsvHeader
        << ",target_vertices,max_vertex_error,predicted_vertices,l2_interp_estimate,t_assembly,t_ordering,t_factor,"
           "t_errors\n";
@@ -508,7 +504,12 @@ int runAdapt(const std::vector<std::string>& argv) {
          << ',' << r.targetVertices << ',' << r.maxVertex << ',' << r.predictedVertices << ',' << r.l2InterpEstimate
          << ',' << r.tAssembly << ',' << r.tOrdering << ',' << r.tFactor << ',' << r.tErrors << '\n';
   });
-  auto num = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+}
+
+/// convergence.json without the uniform comparison (compareWithUniform adds it).
+nlohmann::json reportJson(const Args& a, const Problem& problem, const adapt::AdaptReport& report,
+                          const InterfaceCheck& interfaces) {
+  const auto num = finiteOrNull;
   nlohmann::json j;
   j["problem"] = problem.name;
   j["definition"] = problem.echo;
@@ -540,10 +541,14 @@ int runAdapt(const std::vector<std::string>& argv) {
                 {"l2_interp", num(report.l2InterpRate)},
                 {"l2_interp_estimate", num(report.l2InterpEstimateRate)}};
   j["errors_decrease"] = report.errorsDecrease;
-  if (regions) j["interfaces"] = {{"length", interfaceLength}, {"uncovered", uncovered}};
+  if (problem.data.regions.numTriangles() > 0)
+    j["interfaces"] = {{"length", interfaces.length}, {"uncovered", interfaces.uncovered}};
   j["stopped_early"] = report.stoppedEarly;
+  return j;
+}
 
-  // 5. Uniform refinement on the same axes, and the pictures.
+/// The adaptive curves of the plot: errors per cycle against N.
+std::vector<io::Curve> errorCurves(const adapt::AdaptReport& report, bool exact) {
   std::vector<io::Curve> curves;
   if (exact) curves = {{"adaptive L2", {}, {}}, {"adaptive H1", {}, {}}, {"adaptive L2 interpolant", {}, {}}};
   curves.push_back({"estimated L2 interpolant", {}, {}});
@@ -556,60 +561,117 @@ int runAdapt(const std::vector<std::string>& argv) {
     }
     curves.back().y.push_back(r.l2InterpEstimate);
   }
-  if (a.uniform && exact && regions) {
+  return curves;
+}
+
+/// Structured meshes of the cycles' target sizes, solved: their errors go into the JSON
+/// ("uniform", and "uniform_match": how many times fewer vertices the adaptive curve needs for
+/// the finest uniform mesh's errors) and as two curves into the plot.
+void compareWithUniform(const Problem& problem, const adapt::AdaptReport& report, nlohmann::json& j,
+                        std::vector<io::Curve>& curves) {
+  if (problem.data.regions.numTriangles() > 0) {
     std::printf("Uniform: skipped (the problem has subdomains, which a uniform grid does not follow)\n");
-  } else if (a.uniform && exact && !uniformFits(problem.data.domain)) {
-    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel, or slits)\n");
-  } else if (a.uniform && exact) {
-    io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
-    for (const auto& r : report.cycles) {
-      if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5)
-        continue;
-      const auto u = uniformRun(problem.data, r.targetVertices);
-      ul.x.push_back(u.vertices);
-      ul.y.push_back(u.l2);
-      uh.x.push_back(u.vertices);
-      uh.y.push_back(u.h1);
-      j["uniform"].push_back({{"vertices", u.vertices}, {"l2_error", u.l2}, {"h1_error", u.h1}});
-      std::printf("Uniform: N=%.0f L2=%.3e H1=%.3e\n", u.vertices, u.l2, u.h1);
-    }
-    curves.push_back(ul);
-    curves.push_back(uh);
-    // The vertices the adaptive curve needs for the finest uniform mesh's errors (how many times
-    // fewer vertices adaptivity needs): log–log interpolation along the cycles.
-    std::vector<double> an, al2, ah1;
-    for (const auto& r : report.cycles)
-      if (r.vertices > 0 && r.l2 > 0 && r.h1 > 0 && std::isfinite(r.l2) && std::isfinite(r.h1)) {
-        an.push_back(double(r.vertices));
-        al2.push_back(r.l2);
-        ah1.push_back(r.h1);
-      }
-    for (const auto& [name, uniformCurve, adaptiveErrors] :
-         {std::tuple{"h1", &uh, &ah1}, std::tuple{"l2", &ul, &al2}}) {
-      const double nu = uniformCurve->x.back(), eu = uniformCurve->y.back();
-      const double na = an.empty() ? std::nan("") : adapt::verticesToReach(an, *adaptiveErrors, eu);
-      j["uniform_match"][name] = {
-          {"uniform_vertices", nu}, {"uniform_error", eu}, {"adaptive_vertices", num(na)}, {"ratio", num(nu / na)}};
-      if (std::isfinite(na))
-        std::printf(
-            "Finest uniform mesh (N=%.0f, %s=%.3e) matched by the adaptive curve at N=%.0f: %.1fx fewer vertices\n", nu,
-            name, eu, na, nu / na);
-      else
-        std::printf("Finest uniform mesh (N=%.0f, %s=%.3e) not matched by the adaptive curve\n", nu, name, eu);
-    }
+    return;
   }
-  io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(),
-                          [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+  if (!uniformFits(problem.data.domain)) {
+    std::printf("Uniform: skipped (the domain is not a union of grid cells: sides not axis-parallel, or slits)\n");
+    return;
+  }
+  io::Curve ul{"uniform L2", {}, {}}, uh{"uniform H1", {}, {}};
+  for (const auto& r : report.cycles) {
+    if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5)
+      continue;
+    const auto u = uniformRun(problem.data, r.targetVertices);
+    ul.x.push_back(u.vertices);
+    ul.y.push_back(u.l2);
+    uh.x.push_back(u.vertices);
+    uh.y.push_back(u.h1);
+    j["uniform"].push_back({{"vertices", u.vertices}, {"l2_error", u.l2}, {"h1_error", u.h1}});
+    std::printf("Uniform: N=%.0f L2=%.3e H1=%.3e\n", u.vertices, u.l2, u.h1);
+  }
+  curves.push_back(ul);
+  curves.push_back(uh);
+  std::vector<double> an, al2, ah1;  // log–log interpolation along the cycles
+  for (const auto& r : report.cycles)
+    if (r.vertices > 0 && r.l2 > 0 && r.h1 > 0 && std::isfinite(r.l2) && std::isfinite(r.h1)) {
+      an.push_back(double(r.vertices));
+      al2.push_back(r.l2);
+      ah1.push_back(r.h1);
+    }
+  for (const auto& [name, uniformCurve, adaptiveErrors] : {std::tuple{"h1", &uh, &ah1}, std::tuple{"l2", &ul, &al2}}) {
+    const double nu = uniformCurve->x.back(), eu = uniformCurve->y.back();
+    const double na = an.empty() ? std::nan("") : adapt::verticesToReach(an, *adaptiveErrors, eu);
+    j["uniform_match"][name] = {{"uniform_vertices", nu},
+                                {"uniform_error", eu},
+                                {"adaptive_vertices", finiteOrNull(na)},
+                                {"ratio", finiteOrNull(nu / na)}};
+    if (std::isfinite(na))
+      std::printf(
+          "Finest uniform mesh (N=%.0f, %s=%.3e) matched by the adaptive curve at N=%.0f: %.1fx fewer vertices\n", nu,
+          name, eu, na, nu / na);
+    else
+      std::printf("Finest uniform mesh (N=%.0f, %s=%.3e) not matched by the adaptive curve\n", nu, name, eu);
+  }
+}
+
+/// convergence.png (when every estimate is positive) and final_mesh.png (materials in colour);
+/// returns whether the plot was drawn.
+bool writePictures(const Args& a, const Problem& problem, const std::vector<io::Curve>& curves,
+                   const Mesh2& finalMesh) {
+  namespace fs = std::filesystem;
   const bool plottable = std::all_of(curves.back().y.begin(), curves.back().y.end(), [](double e) { return e > 0; });
   if (plottable)
     io::drawLogLogPlot((fs::path(a.outDir) / "convergence.png").string(), curves, {-0.5, -1.0}, "vertices N", "error",
                        "ablmg adapt: " + problem.name);
-  if (regions) {  // the materials in colour, their interfaces in red
+  const std::string meshPng = (fs::path(a.outDir) / "final_mesh.png").string();
+  if (problem.data.regions.numTriangles() > 0) {  // the materials in colour, their interfaces in red
     const std::vector<double> material(finalMesh.triangleRefs.begin(), finalMesh.triangleRefs.end());
-    io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh, material, "material");
+    io::drawMesh(meshPng, finalMesh, material, "material");
   } else {
-    io::drawMesh((fs::path(a.outDir) / "final_mesh.png").string(), finalMesh);
+    io::drawMesh(meshPng, finalMesh);
   }
+  return plottable;
+}
+
+int runAdapt(const std::vector<std::string>& argv) {
+  for (const auto& x : argv)
+    if (x == "-h" || x == "--help") {
+      std::cout << kAdaptHelp;
+      return 0;
+    }
+  Args a = parseArgs(argv);
+  if (a.printOptions) {
+    printEffectiveOptions("adapt", "adapt", a.options.mesh, loopOptionsJson(a, int(a.options.targetVertices.size())));
+    return 0;
+  }
+  // 0. The problem, and a reference solution where it has no exact one.
+  Problem problem = a.config.empty() ? libraryProblem(a.problem, a.params) : configProblem(a.config);
+  const long referenceMeshVertices = attachReferenceSolution(a, problem);
+  const bool exact = problem.data.exact.has_value();
+  namespace fs = std::filesystem;
+  fs::create_directories(a.outDir);
+  // 1. Resolved options.
+  printResolvedOptions(a, problem, referenceMeshVertices);
+  // 2. The loop; each cycle prints its line and writes its files.
+  Mesh2 finalMesh;
+  ProgressLine progress("adapt", a.verbosity);
+  a.options.progress = progress.callback();
+  const adapt::AdaptReport report = adapt::runAdaptiveLoop(problem.data, a.options, [&](const adapt::CycleData& c) {
+    progress.clear();
+    printCycle(c.report, exact, a.verbosity);
+    writeCycleFiles(a, problem, c);
+    if (c.nextMetric.empty()) finalMesh = c.mesh;
+  });
+  progress.clear();
+  // 3. Rates and checks; 4. the reports; 5. uniform refinement on the same axes, the pictures.
+  const InterfaceCheck interfaces = printSummary(report, problem, finalMesh);
+  writeCsv((fs::path(a.outDir) / "convergence.csv").string(), report);
+  nlohmann::json j = reportJson(a, problem, report, interfaces);
+  std::vector<io::Curve> curves = errorCurves(report, exact);
+  if (a.uniform && exact) compareWithUniform(problem, report, j, curves);
+  io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(),
+                          [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+  const bool plottable = writePictures(a, problem, curves, finalMesh);
   std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json" << (plottable ? ", convergence.png" : "")
             << ", final_mesh.png" << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
   return 0;

@@ -23,27 +23,92 @@ struct HalfEdge {
   }
 };
 
-/// All half-edges in HalfEdge order: a counting sort on `lo` (O(V + T)), then each bucket
-/// (a vertex's few edges) sorted on its own. Vertex ids out of range go in one last bucket,
-/// sorted in full (validate() reports them; no out-of-bounds access on the way).
-std::vector<HalfEdge> halfEdges(const Mesh2& m) {
-  const int nv = m.numVertices();
-  std::vector<int> start(static_cast<std::size_t>(nv) + 2, 0);
-  auto bucket = [nv](int lo) { return lo >= 0 && lo < nv ? lo : nv; };
-  for (const auto& tr : m.triangles)
-    for (int k = 0; k < 3; ++k) ++start[std::size_t(bucket(std::min(tr[k], tr[(k + 1) % 3]))) + 1];
-  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
-  std::vector<HalfEdge> h(3 * m.triangles.size());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int t = 0; t < m.numTriangles(); ++t) {
-    const auto& tr = m.triangles[t];
+/// Triangles per chunk of the parallel loops below: sums over chunks of a fixed size, added
+/// in chunk order, are the same for any thread count.
+constexpr int kChunk = 1 << 14;
+/// Below this many triangles the loops run on one thread.
+constexpr int kParallelTriangles = 1 << 15;
+
+/// All half-edges in HalfEdge order, and start[v] = the first with lo = v (start[nv] = the
+/// first whose lo is out of range, start[nv + 1] = the end): a counting sort on `lo`
+/// (O(V + T)), then each bucket (a vertex's few edges) sorted on its own. In parallel the
+/// buckets fill in any order, but each is then sorted on the whole key (unique: the triangle
+/// differs), so the result does not depend on the threads. Vertex ids out of range go in one
+/// last bucket, sorted in full (validate() reports them; no out-of-bounds access on the way).
+struct HalfEdges {
+  std::vector<HalfEdge> h;
+  std::vector<int> start;
+};
+
+HalfEdges halfEdges(const Mesh2& m) {
+  const int nv = m.numVertices(), nt = m.numTriangles();
+  HalfEdges r;
+  auto& start = r.start;
+  start.assign(static_cast<std::size_t>(nv) + 2, 0);
+  auto bucket = [nv](int lo) { return std::size_t(lo >= 0 && lo < nv ? lo : nv); };
+  const bool parallel = nt >= kParallelTriangles;
+#pragma omp parallel for schedule(static) if (parallel)
+  for (int t = 0; t < nt; ++t) {
+    const auto& tr = m.triangles[std::size_t(t)];
     for (int k = 0; k < 3; ++k) {
-      const int a = tr[k], b = tr[(k + 1) % 3];
-      h[std::size_t(fill[std::size_t(bucket(std::min(a, b)))]++)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+      int& c = start[bucket(std::min(tr[k], tr[(k + 1) % 3])) + 1];
+#pragma omp atomic
+      ++c;
     }
   }
-  for (int v = 0; v <= nv; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
-  return h;
+  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  r.h.resize(3 * m.triangles.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+#pragma omp parallel for schedule(static) if (parallel)
+  for (int t = 0; t < nt; ++t) {
+    const auto& tr = m.triangles[std::size_t(t)];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tr[k], b = tr[(k + 1) % 3];
+      int& f = fill[bucket(std::min(a, b))];
+      int slot;
+#pragma omp atomic capture
+      slot = f++;
+      r.h[std::size_t(slot)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+    }
+  }
+#pragma omp parallel for schedule(static, 4096) if (parallel)
+  for (int v = 0; v <= nv; ++v) std::sort(r.h.begin() + start[std::size_t(v)], r.h.begin() + start[std::size_t(v) + 1]);
+  return r;
+}
+
+/// validate()'s fast path: true when every triangle's vertex ids are in range and it is
+/// counter-clockwise (orient2d > 0), every vertex is used, and then `area` = the sum of the
+/// triangle areas (chunk sums in chunk order). False: the serial checks find and name the
+/// problem.
+bool trianglesLookValid(const Mesh2& m, double& area) {
+  const int nv = m.numVertices(), nt = m.numTriangles();
+  const int chunks = (nt + kChunk - 1) / kChunk;
+  std::vector<double> part(std::size_t(chunks), 0.0);
+  std::vector<char> used(std::size_t(nv), 0);
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad) if (nt >= kParallelTriangles)
+  for (int c = 0; c < chunks; ++c) {
+    double sum = 0;
+    for (int t = c * kChunk; t < std::min(nt, (c + 1) * kChunk); ++t) {
+      const auto& tr = m.triangles[std::size_t(t)];
+      if (std::min({tr[0], tr[1], tr[2]}) < 0 || std::max({tr[0], tr[1], tr[2]}) >= nv) {
+        ++bad;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        char& u = used[std::size_t(tr[k])];
+#pragma omp atomic write
+        u = 1;
+      }
+      bad += orient2d(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]) <= 0;
+      sum += m.triangleArea(t);
+    }
+    part[std::size_t(c)] = sum;
+  }
+  if (bad > 0 || std::find(used.begin(), used.end(), 0) != used.end()) return false;
+  area = 0;
+  for (const double a : part) area += a;
+  return true;
 }
 
 }  // namespace
@@ -59,141 +124,209 @@ double Mesh2::area() const {
   return a;
 }
 
-MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTolerance, int idBase) const {
+namespace {
+
+using EdgeKey = std::array<int, 2>;
+
+/// The checks of Mesh2::validate, run in order. Each counts what it finds in `r` and keeps the
+/// first problem's text; a check that returns false found input the later checks cannot read
+/// (an id out of range, a non-finite coordinate).
+class MeshChecks {
+ public:
+  MeshChecks(const Mesh2& m, int idBase) : m_(m), idBase_(idBase), nv_(m.numVertices()) {}
   MeshValidation r;
-  const auto id = [idBase](int v) { return std::to_string(v + idBase); };
-  auto problem = [&](const std::string& s) {
-    if (r.ok) r.firstProblem = s;
-    r.ok = false;
-  };
-  const int nv = numVertices();
-  for (int v = 0; v < nv; ++v)
-    if (!std::isfinite(vertices[v].x()) || !std::isfinite(vertices[v].y())) {
-      problem("vertex " + id(v) + " has a non-finite coordinate");
-      return r;
-    }
-  if (triangles.empty()) {
-    problem("the mesh has no triangles");
-    return r;
-  }
-  std::vector<char> used(nv, 0);
-  for (int t = 0; t < numTriangles(); ++t) {
-    const auto& tr = triangles[t];
-    for (int k = 0; k < 3; ++k)
-      if (tr[k] < 0 || tr[k] >= nv) {
-        problem("triangle " + id(t) + " refers to vertex " + id(tr[k]) + " out of range");
-        return r;
+
+  /// Every coordinate is finite and there is at least one triangle.
+  bool vertices() {
+    for (int v = 0; v < nv_; ++v)
+      if (!std::isfinite(m_.vertices[v].x()) || !std::isfinite(m_.vertices[v].y())) {
+        problem("vertex " + id(v) + " has a non-finite coordinate");
+        return false;
       }
-    for (int k = 0; k < 3; ++k) used[tr[k]] = 1;
-    if (orient2d(vertices[tr[0]], vertices[tr[1]], vertices[tr[2]]) <= 0) {
-      ++r.invertedTriangles;
-      std::ostringstream os;
-      os << "triangle " << id(t) << " (" << id(tr[0]) << ", " << id(tr[1]) << ", " << id(tr[2])
-         << ") is inverted or degenerate";
-      problem(os.str());
+    if (m_.triangles.empty()) {
+      problem("the mesh has no triangles");
+      return false;
     }
-    r.area += triangleArea(t);
+    return true;
   }
-  for (int v = 0; v < nv; ++v)
-    if (!used[v]) {
-      ++r.unusedVertices;
-      problem("vertex " + id(v) + " is used by no triangle");
+
+  /// Vertex ids in range, positive orientation (exact predicate), every vertex used; sums the area.
+  bool triangles() {
+    if (trianglesLookValid(m_, r.area)) return true;  // in parallel; the serial pass names a problem
+    std::vector<char> used(nv_, 0);
+    for (int t = 0; t < m_.numTriangles(); ++t) {
+      const auto& tr = m_.triangles[t];
+      for (int k = 0; k < 3; ++k)
+        if (tr[k] < 0 || tr[k] >= nv_) {
+          problem("triangle " + id(t) + " refers to vertex " + id(tr[k]) + " out of range");
+          return false;
+        }
+      for (int k = 0; k < 3; ++k) used[tr[k]] = 1;
+      if (orient2d(m_.vertices[tr[0]], m_.vertices[tr[1]], m_.vertices[tr[2]]) <= 0) {
+        ++r.invertedTriangles;
+        std::ostringstream os;
+        os << "triangle " << id(t) << " (" << id(tr[0]) << ", " << id(tr[1]) << ", " << id(tr[2])
+           << ") is inverted or degenerate";
+        problem(os.str());
+      }
+      r.area += m_.triangleArea(t);
     }
-  // Boundary edges as directed pairs, sorted for lookup.
-  std::vector<std::array<int, 2>> bnd;
-  bnd.reserve(boundaryEdges.size());
-  for (const auto& e : boundaryEdges) {
-    if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
-      problem("boundary edge (" + id(e.a) + ", " + id(e.b) + ") is out of range or degenerate");
-      return r;
-    }
-    bnd.push_back({e.a, e.b});
+    for (int v = 0; v < nv_; ++v)
+      if (!used[v]) {
+        ++r.unusedVertices;
+        problem("vertex " + id(v) + " is used by no triangle");
+      }
+    return true;
   }
-  std::sort(bnd.begin(), bnd.end());
-  for (std::size_t i = 1; i < bnd.size(); ++i)
-    if (bnd[i] == bnd[i - 1]) problem("boundary edge (" + id(bnd[i][0]) + ", " + id(bnd[i][1]) + ") is listed twice");
-  std::vector<char> bndUsed(bnd.size(), 0);
-  // Interface edges, undirected, sorted; each must turn out to be an interior edge.
-  std::vector<std::array<int, 2>> itf;
-  itf.reserve(interfaceEdges.size());
-  for (const auto& e : interfaceEdges) {
-    if (e.a < 0 || e.a >= nv || e.b < 0 || e.b >= nv || e.a == e.b) {
-      problem("interface edge (" + id(e.a) + ", " + id(e.b) + ") is out of range or degenerate");
-      return r;
+
+  /// `list` as sorted keys (directed (a, b), or undirected (min, max)), each in range, not
+  /// degenerate, listed once; `what` names the list in the messages.
+  bool edgeKeys(const std::vector<BoundaryEdge>& list, const char* what, bool directed, std::vector<EdgeKey>& keys) {
+    keys.reserve(list.size());
+    for (const auto& e : list) {
+      if (e.a < 0 || e.a >= nv_ || e.b < 0 || e.b >= nv_ || e.a == e.b) {
+        problem(std::string(what) + " (" + id(e.a) + ", " + id(e.b) + ") is out of range or degenerate");
+        return false;
+      }
+      keys.push_back(directed ? EdgeKey{e.a, e.b} : EdgeKey{std::min(e.a, e.b), std::max(e.a, e.b)});
     }
-    itf.push_back({std::min(e.a, e.b), std::max(e.a, e.b)});
+    std::sort(keys.begin(), keys.end());
+    for (std::size_t i = 1; i < keys.size(); ++i)
+      if (keys[i] == keys[i - 1])
+        problem(std::string(what) + " (" + id(keys[i][0]) + ", " + id(keys[i][1]) + ") is listed twice");
+    return true;
   }
-  std::sort(itf.begin(), itf.end());
-  for (std::size_t i = 1; i < itf.size(); ++i)
-    if (itf[i] == itf[i - 1]) problem("interface edge (" + id(itf[i][0]) + ", " + id(itf[i][1]) + ") is listed twice");
-  std::vector<char> itfUsed(itf.size(), 0);
-  const auto refOf = [&](int t) { return std::size_t(t) < triangleRefs.size() ? triangleRefs[std::size_t(t)] : 0; };
-  const auto h = halfEdges(*this);
-  for (std::size_t i = 0; i < h.size();) {
-    std::size_t j = i;
-    while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
-    const std::size_t count = j - i;
-    const auto name = [&] { return "edge (" + id(h[i].lo) + ", " + id(h[i].hi) + ")"; };
-    const auto inItf = std::lower_bound(itf.begin(), itf.end(), std::array<int, 2>{h[i].lo, h[i].hi});
-    const bool isItf = inItf != itf.end() && *inItf == std::array<int, 2>{h[i].lo, h[i].hi};
-    if (isItf) itfUsed[std::size_t(inItf - itf.begin())] = 1;
-    if (count == 2 && h[i].forward != h[i + 1].forward) {
-      // interior edge, consistently oriented; a change of subdomain must be an interface edge
-      if (!isItf && refOf(h[i].tri) != refOf(h[i + 1].tri))
-        problem(name() + " separates subdomains " + std::to_string(refOf(h[i].tri)) + " and " +
-                std::to_string(refOf(h[i + 1].tri)) + " but is not an interface edge");
-    } else if (count == 1) {
-      if (isItf) problem("interface " + name() + " lies in one triangle (a boundary edge, not an interior one)");
-      const std::array<int, 2> dir =
-          h[i].forward ? std::array<int, 2>{h[i].lo, h[i].hi} : std::array<int, 2>{h[i].hi, h[i].lo};
-      const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
-      if (it == bnd.end() || *it != dir) {
+
+  /// Each mesh edge lies in two triangles of opposite orientation (an interface edge where the
+  /// subdomain changes) or in one, then it is a boundary edge with the triangle on its left.
+  /// Every listed boundary edge and interface edge is met that way.
+  void edgeIncidence(const std::vector<EdgeKey>& bnd, const std::vector<EdgeKey>& itf) {
+    std::vector<char> bndUsed(bnd.size(), 0), itfUsed(itf.size(), 0);
+    const auto refOf = [&](int t) {
+      return std::size_t(t) < m_.triangleRefs.size() ? m_.triangleRefs[std::size_t(t)] : 0;
+    };
+    const HalfEdges he = halfEdges(m_);  // named members, not a structured binding: the
+    const auto& h = he.h;                // lambdas below capture them (clang 14)
+    // One run of half-edges with the same end points, h[i, j): an interior edge in two
+    // triangles of opposite orientation, or a boundary edge in one. `report`: name the problem
+    // (serial) or only return false. Each run writes its own bndUsed / itfUsed entries.
+    const auto run = [&](std::size_t i, std::size_t j, bool report) {
+      const std::size_t count = j - i;
+      const auto name = [&] { return "edge (" + id(h[i].lo) + ", " + id(h[i].hi) + ")"; };
+      const auto inItf = std::lower_bound(itf.begin(), itf.end(), EdgeKey{h[i].lo, h[i].hi});
+      const bool isItf = inItf != itf.end() && *inItf == EdgeKey{h[i].lo, h[i].hi};
+      if (isItf) itfUsed[std::size_t(inItf - itf.begin())] = 1;
+      if (count == 2 && h[i].forward != h[i + 1].forward) {
+        if (isItf || refOf(h[i].tri) == refOf(h[i + 1].tri)) return true;
+        if (report)
+          problem(name() + " separates subdomains " + std::to_string(refOf(h[i].tri)) + " and " +
+                  std::to_string(refOf(h[i + 1].tri)) + " but is not an interface edge");
+        return false;
+      }
+      if (count == 1) {
+        if (isItf && !report) return false;
+        if (isItf) problem("interface " + name() + " lies in one triangle (a boundary edge, not an interior one)");
+        const EdgeKey dir = h[i].forward ? EdgeKey{h[i].lo, h[i].hi} : EdgeKey{h[i].hi, h[i].lo};
+        const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
+        if (it != bnd.end() && *it == dir) {
+          bndUsed[std::size_t(it - bnd.begin())] = 1;
+          return !isItf;
+        }
+        if (!report) return false;
         ++r.openEdges;
         problem(name() + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
-      } else {
-        bndUsed[it - bnd.begin()] = 1;
+        return false;
       }
-    } else {
+      if (!report) return false;
       ++r.nonManifoldEdges;
       problem(name() + " lies in " + std::to_string(count) + " triangles" +
               (count == 2 ? " with the same orientation" : ""));
-    }
-    i = j;
-  }
-  for (std::size_t k = 0; k < bnd.size(); ++k)
-    if (!bndUsed[k]) {
-      ++r.openEdges;
-      problem("boundary edge (" + id(bnd[k][0]) + ", " + id(bnd[k][1]) +
-              ") is not the edge of exactly one triangle on its left");
-    }
-  for (std::size_t k = 0; k < itf.size(); ++k)
-    if (!itfUsed[k])
-      problem("interface edge (" + id(itf[k][0]) + ", " + id(itf[k][1]) + ") is not an edge of the mesh");
-  for (const auto* list : {&corners, &requiredVertices})
-    for (int v : *list)
-      if (v < 0 || v >= nv) {
-        problem((list == &corners ? "corner " : "required vertex ") + id(v) + " is out of range");
-        return r;
+      return false;
+    };
+    const auto runsIn = [&](std::size_t first, std::size_t last, bool report) {
+      bool ok = true;
+      for (std::size_t i = first; i < last;) {
+        std::size_t j = i;
+        while (j < last && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+        ok = run(i, j, report) && ok;
+        i = j;
       }
-  if (!requiredEdges.empty() || !ridges.empty()) {
-    const auto all = edges();
-    for (const auto* list : {&requiredEdges, &ridges})
+      return ok;
+    };
+    // In parallel by vertex buckets (a run never crosses one); the serial pass names a problem.
+    int bad = 0;
+#pragma omp parallel for schedule(static, 4096) reduction(+ : bad) if (m_.numTriangles() >= kParallelTriangles)
+    for (int v = 0; v <= nv_; ++v)
+      bad += !runsIn(std::size_t(he.start[std::size_t(v)]), std::size_t(he.start[std::size_t(v) + 1]), false);
+    if (bad > 0) {
+      std::fill(bndUsed.begin(), bndUsed.end(), 0);
+      std::fill(itfUsed.begin(), itfUsed.end(), 0);
+      runsIn(0, h.size(), true);
+    }
+    for (std::size_t k = 0; k < bnd.size(); ++k)
+      if (!bndUsed[k]) {
+        ++r.openEdges;
+        problem("boundary edge (" + id(bnd[k][0]) + ", " + id(bnd[k][1]) +
+                ") is not the edge of exactly one triangle on its left");
+      }
+    for (std::size_t k = 0; k < itf.size(); ++k)
+      if (!itfUsed[k])
+        problem("interface edge (" + id(itf[k][0]) + ", " + id(itf[k][1]) + ") is not an edge of the mesh");
+  }
+
+  /// Corners and required vertices in range; required edges and ridges are mesh edges.
+  bool features() {
+    for (const auto* list : {&m_.corners, &m_.requiredVertices})
+      for (int v : *list)
+        if (v < 0 || v >= nv_) {
+          problem((list == &m_.corners ? "corner " : "required vertex ") + id(v) + " is out of range");
+          return false;
+        }
+    if (m_.requiredEdges.empty() && m_.ridges.empty()) return true;
+    const auto all = m_.edges();
+    for (const auto* list : {&m_.requiredEdges, &m_.ridges})
       for (const auto& e : *list) {
-        const std::array<int, 2> k{std::min(e[0], e[1]), std::max(e[0], e[1])};
+        const EdgeKey k{std::min(e[0], e[1]), std::max(e[0], e[1])};
         if (!std::binary_search(all.begin(), all.end(), k))
-          problem(std::string(list == &ridges ? "ridge" : "required edge") + " (" + id(e[0]) + ", " + id(e[1]) +
+          problem(std::string(list == &m_.ridges ? "ridge" : "required edge") + " (" + id(e[0]) + ", " + id(e[1]) +
                   ") is not an edge of the mesh");
       }
+    return true;
   }
-  if (expectedArea) {
-    const double rel = std::abs(r.area - *expectedArea) / std::abs(*expectedArea);
-    if (!(rel <= areaTolerance)) {
+
+  /// The summed area matches `expected` to the relative tolerance.
+  void area(double expected, double tolerance) {
+    const double rel = std::abs(r.area - expected) / std::abs(expected);
+    if (!(rel <= tolerance)) {
       std::ostringstream os;
-      os << "mesh area " << r.area << " differs from the domain's " << *expectedArea << " (relative " << rel << ")";
+      os << "mesh area " << r.area << " differs from the domain's " << expected << " (relative " << rel << ")";
       problem(os.str());
     }
   }
-  return r;
+
+ private:
+  std::string id(int v) const { return std::to_string(v + idBase_); }
+  void problem(const std::string& s) {
+    if (r.ok) r.firstProblem = s;
+    r.ok = false;
+  }
+  const Mesh2& m_;
+  int idBase_;
+  int nv_;
+};
+
+}  // namespace
+
+MeshValidation Mesh2::validate(std::optional<double> expectedArea, double areaTolerance, int idBase) const {
+  MeshChecks c(*this, idBase);
+  std::vector<EdgeKey> bnd, itf;
+  if (!c.vertices() || !c.triangles() || !c.edgeKeys(boundaryEdges, "boundary edge", true, bnd) ||
+      !c.edgeKeys(interfaceEdges, "interface edge", false, itf))
+    return c.r;
+  c.edgeIncidence(bnd, itf);
+  if (!c.features()) return c.r;
+  if (expectedArea) c.area(*expectedArea, areaTolerance);
+  return c.r;
 }
 
 void Mesh2::requireValid(const std::string& what, std::optional<double> expectedArea, double areaTolerance,
@@ -211,7 +344,7 @@ std::vector<std::array<int, 2>> Mesh2::edges() const {
     return std::min({tr[0], tr[1], tr[2]}) >= 0 && std::max({tr[0], tr[1], tr[2]}) < nv;
   });
   if (inRange) {  // from the half-edges (counting sort, O(V + T)): the same order as sorting
-    const auto h = halfEdges(*this);
+    const auto h = halfEdges(*this).h;
     e.reserve(h.size() / 2 + 1);
     for (const auto& x : h)
       if (e.empty() || e.back()[0] != x.lo || e.back()[1] != x.hi) e.push_back({x.lo, x.hi});
@@ -227,7 +360,8 @@ std::vector<std::array<int, 2>> Mesh2::edges() const {
 
 std::vector<std::array<int, 3>> Mesh2::triangleNeighbours() const {
   std::vector<std::array<int, 3>> nb(triangles.size(), {-1, -1, -1});
-  const auto h = halfEdges(*this);
+  const HalfEdges he = halfEdges(*this);
+  const auto& h = he.h;
   auto localEdge = [&](int t, int lo, int hi) {
     const auto& tr = triangles[t];
     for (int k = 0; k < 3; ++k) {
@@ -236,11 +370,17 @@ std::vector<std::array<int, 3>> Mesh2::triangleNeighbours() const {
     }
     return -1;
   };
-  for (std::size_t i = 0; i + 1 < h.size(); ++i)
-    if (h[i].lo == h[i + 1].lo && h[i].hi == h[i + 1].hi) {
-      nb[h[i].tri][localEdge(h[i].tri, h[i].lo, h[i].hi)] = h[i + 1].tri;
-      nb[h[i + 1].tri][localEdge(h[i + 1].tri, h[i].lo, h[i].hi)] = h[i].tri;
-    }
+  // By vertex buckets: every write for an edge comes from its own bucket, in the serial order.
+  const int nv = numVertices();
+#pragma omp parallel for schedule(static, 4096) if (numTriangles() >= kParallelTriangles)
+  for (int v = 0; v <= nv; ++v) {
+    const std::size_t last = std::size_t(he.start[std::size_t(v) + 1]);
+    for (std::size_t i = std::size_t(he.start[std::size_t(v)]); i + 1 < last; ++i)
+      if (h[i].lo == h[i + 1].lo && h[i].hi == h[i + 1].hi) {
+        nb[h[i].tri][localEdge(h[i].tri, h[i].lo, h[i].hi)] = h[i + 1].tri;
+        nb[h[i + 1].tri][localEdge(h[i + 1].tri, h[i].lo, h[i].hi)] = h[i].tri;
+      }
+  }
   return nb;
 }
 

@@ -8,6 +8,11 @@
 /// 2.3·10⁴-node layer: ~10³ points scanned per query, for a dozen inside the box). The tree
 /// splits at the median along the longer side of each node's bounding box down to leaves of
 /// at most kLeafSize points, so a query visits O(log n + points in the box) points anywhere.
+/// Optional per-point scales (the half-widths of the boxes the queries around a point will
+/// use) make the splits follow the queries' shape: a node is split along the side that is
+/// longer in units of its points' mean scale, so where the queries are thin boxes (a layer's
+/// nodes under a metric of anisotropy 10⁴: 2·10⁻⁴ by 2) the leaves are thin boxes too and a
+/// query meets O(1) of them instead of O(√anisotropy) square ones.
 /// Built once (O(n log n)), read-only afterwards: queries may run concurrently.
 /// Units: the coordinates' own. Ids are the indices of the points given to the constructor.
 #include "ablmg/core/vec2.hpp"
@@ -25,8 +30,11 @@ class PointBoxTree {
 
   PointBoxTree() = default;
   /// The tree of `points` (any number, duplicates allowed; id = index), with one weight per
-  /// point if `weights` is not empty (see forEachInBoxFrom).
-  explicit PointBoxTree(std::span<const Vec2> points, std::span<const double> weights = {});
+  /// point if `weights` is not empty (see forEachInBoxFrom), and one scale per point (both
+  /// components > 0; see above) if `scales` is not empty: they shape the tree only, never
+  /// what a query reports.
+  explicit PointBoxTree(std::span<const Vec2> points, std::span<const double> weights = {},
+                        std::span<const Vec2> scales = {});
 
   int size() const { return int(ids_.size()); }
 
@@ -74,11 +82,11 @@ class PointBoxTree {
     int begin, end, left;
   };
   struct Entry {
-    Vec2 p;
+    Vec2 p, scale;
     double w;
     int id;
   };
-  void build(std::vector<Entry>& e, int begin, int end, int index);
+  void build(std::vector<Entry>& e, int begin, int end, int index, bool scaled);
 
   std::vector<Node> nodes_;
   std::vector<int> ids_;   ///< point ids in tree order

@@ -34,6 +34,7 @@ struct Dissection {
   /// An exception out of a task (allocation) is kept here, rethrown after the region: the
   /// piece of the lowest offset wins (core/parallel_failure.hpp).
   ParallelFailure failure;
+  TopCut top;  ///< the first cut (set by the root call only)
 
   static constexpr std::size_t kTaskCutoff = 20000;  ///< pieces smaller than this stay serial
 
@@ -225,6 +226,7 @@ struct Dissection {
     const std::size_t upperOffset = offset + lower.size(), sepOffset = upperOffset + upper.size();
     std::sort(separator.begin(), separator.end());
     emit(separator, sepOffset);
+    if (offset == 0 && sepOffset + separator.size() == perm.size()) top = {int(lower.size()), int(upper.size())};
     if (lower.size() + upper.size() >= kTaskCutoff) {
 #pragma omp task default(none) firstprivate(lower, offset)
       failure.run(long(offset), [&] { order(std::move(lower), offset); });
@@ -240,7 +242,7 @@ struct Dissection {
 }  // namespace
 
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
-                                           int leafSize, CutChoice cut) {
+                                           int leafSize, CutChoice cut, TopCut* top) {
   const int n = int(A.rows());
   ABLMG_REQUIRE(A.cols() == n && int(points.size()) == n && A.isCompressed(),
                 "geometricNestedDissection: matrix " << A.rows() << "×" << A.cols() << " (compressed: "
@@ -253,6 +255,7 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
                std::make_unique<std::atomic<int>[]>(std::size_t(n)),
                {},
                std::vector<int>(n, -1),
+               {},
                {},
                {}};
   for (int v = 0; v < n; ++v) d.setMark(v, 0);
@@ -275,6 +278,7 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
 #pragma omp single
   d.failure.run(-1, [&] { d.order(std::move(all), 0); });
   d.failure.rethrow();
+  if (top) *top = d.top;
   return d.perm;
 }
 

@@ -36,10 +36,20 @@ enum class CutChoice {
   LongerAxis          ///< across the longer side of the piece's bounding box
 };
 
+/// The first cut of the dissection: perm = [lower side (`lower` unknowns), upper side
+/// (`upper`), separator (the rest)], and no edge of A joins the two sides. Both 0 when the
+/// whole set was one leaf (n ≤ leafSize, or every point on the cut line).
+struct TopCut {
+  int lower = 0;
+  int upper = 0;
+};
+
 /// `A`: n × n with a symmetric pattern (both halves stored, compressed); `points`: n
-/// positions. Returns `perm` with perm[k] = the unknown placed k-th (a permutation of 0..n−1).
+/// positions. Returns `perm` with perm[k] = the unknown placed k-th (a permutation of 0..n−1);
+/// `top` (optional) receives the first cut (fem/split_cholesky.hpp factorises its sides apart).
 std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A, const std::vector<Vec2>& points,
-                                           int leafSize = 500, CutChoice cut = CutChoice::SmallestSeparator);
+                                           int leafSize = 500, CutChoice cut = CutChoice::SmallestSeparator,
+                                           TopCut* top = nullptr);
 
 /// METIS' multilevel nested dissection (METIS_NodeND, default options) of A's graph (the
 /// diagonal ignored), for comparison: it needs no coordinates, but costs ≈ 10× our geometric

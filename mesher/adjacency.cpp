@@ -31,12 +31,15 @@ Vec2 searchBox(const Metric2& m, double radius) { return reachBox(m, radius) * (
 /// with more than kCrowdedCell others on average: a boundary layer of anisotropy 10³–10⁴,
 /// where each query would scan hundreds of nodes per cell). On mild metrics the grid's queries
 /// are cheaper than the tree's. Both report every node in the box of weight ≥ wmin (the grid
-/// also some nearby ones: callers test the metric distance).
+/// also some nearby ones: callers test the metric distance). The tree's splits follow the
+/// nodes' reach boxes (PointBoxTree's scales): in a layer of anisotropy 10⁴ square leaves
+/// made each query visit ~10² of them, and the initial build of a layer remesh took 5 µs per
+/// node.
 class NodeIndex {
  public:
   static constexpr double kCrowdedCell = 16;
 
-  NodeIndex(std::span<const Vec2> x, std::span<const double> w) : w_(w) {
+  NodeIndex(std::span<const Vec2> x, std::span<const double> w, std::span<const Vec2> reach) : w_(w) {
     const int n = int(x.size());
     Vec2 lo = x[0], hi = x[0];
     for (const auto& p : x) {
@@ -50,7 +53,7 @@ class NodeIndex {
     for (int c = 0; c < grid_.numCells(); ++c) sharing += double(grid_.cell(c).size()) * double(grid_.cell(c).size());
     if (sharing > kCrowdedCell * n) {
       grid_ = BucketGrid();
-      tree_.emplace(x, w);
+      tree_.emplace(x, w, reach);
     }
   }
 
@@ -71,15 +74,20 @@ class NodeIndex {
   std::optional<PointBoxTree> tree_;
 };
 
-/// Box area of each node's reach box at radius 1: the weight that decides which node of a pair
-/// searches for it (the one with the smaller box; ties by the smaller id).
-std::vector<double> boxWeights(std::span<const Metric2> m) {
-  std::vector<double> w(m.size());
+/// Each node's reach box at radius 1, and its area: the weight that decides which node of a
+/// pair searches for it (the one with the smaller box; ties by the smaller id).
+struct BoxWeights {
+  std::vector<Vec2> reach;
+  std::vector<double> w;
+};
+
+BoxWeights boxWeights(std::span<const Metric2> m) {
+  BoxWeights b{std::vector<Vec2>(m.size()), std::vector<double>(m.size())};
   for (std::size_t i = 0; i < m.size(); ++i) {
-    const Vec2 R = reachBox(m[i], 1.0);
-    w[i] = R.x() * R.y();
+    b.reach[i] = reachBox(m[i], 1.0);
+    b.w[i] = b.reach[i].x() * b.reach[i].y();
   }
-  return w;
+  return b;
 }
 
 /// A pair within the radius has |d|²_{M_i} and |d|²_{M_j} both ≤ 2·radius² (their mean is ≤
@@ -127,8 +135,9 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
   const int n = int(x.size());
   if (n == 0) return {};
-  const std::vector<double> w = boxWeights(m);
-  const NodeIndex tree(x, w);
+  const BoxWeights b = boxWeights(m);
+  const std::vector<double>& w = b.w;
+  const NodeIndex tree(x, w, b.reach);
   // Each pair once, from its lighter node (kPairSearch); the transpose below adds the other way.
   const AdjacencyLists found = blockedCsr(n, [&](int i, std::vector<int>& out) {
     const Vec2 R = searchBox(m[i], kPairSearch * radius);
@@ -444,8 +453,11 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
   const int n = int(x.size());
   std::vector<std::pair<int, int>> pairs;
   if (firstNew >= n) return pairs;
-  const std::vector<double> w = boxWeights(m);
-  const NodeIndex all(x, w), fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)));
+  const BoxWeights b = boxWeights(m);
+  const std::vector<double>& w = b.w;
+  const NodeIndex all(x, w, b.reach),
+      fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)),
+            std::span(b.reach).subspan(std::size_t(firstNew)));
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
 #pragma omp parallel if (n >= kMinParallelItems)

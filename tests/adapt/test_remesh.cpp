@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "square_with_hole.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,12 +25,7 @@ using namespace ablmg::adapt;
 
 namespace {
 
-/// [0, 4]² (tags 1 bottom, 2 right, 3 top, 4 left) minus the hole [1, 2]² (tag 5).
-Domain squareWithHole() {
-  const BoundaryLoop outer = BoundaryLoop::polygon({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {1, 2, 3, 4});
-  const BoundaryLoop hole = BoundaryLoop::polygon({{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5});
-  return Domain(std::move(outer), {std::move(hole)});
-}
+using test::squareWithHole;
 
 /// A perturbed structured mesh of squareWithHole() (cells 0.25 wide, 280 vertices).
 Mesh2 inputMesh() { return fem::structuredMesh(squareWithHole(), 16, 16, 0.15, 7); }

@@ -9,6 +9,8 @@
 #include "ablmg/fem/structured_mesh.hpp"
 
 #include <gtest/gtest.h>
+
+#include "square_with_hole.hpp"
 #include <omp.h>
 
 #include <cmath>
@@ -18,12 +20,7 @@ using namespace ablmg::adapt;
 
 namespace {
 
-/// [0, 4]² minus the hole [1, 2]²: a polygon with a hole and re-entrant corners.
-Domain squareWithHole() {
-  const BoundaryLoop outer = BoundaryLoop::polygon({{0, 0}, {4, 0}, {4, 4}, {0, 4}}, {1, 2, 3, 4});
-  const BoundaryLoop hole = BoundaryLoop::polygon({{1, 1}, {2, 1}, {2, 2}, {1, 2}}, {5, 5, 5, 5});
-  return Domain(std::move(outer), {std::move(hole)});
-}
+using test::squareWithHole;
 
 /// Two unrelated meshes of squareWithHole(): a perturbed structured one and a bubble mesh.
 struct MeshPair {

@@ -259,6 +259,7 @@ foreach(case
     "tanhlayer|--problem tanhlayer"
     "reentrant_5pi4|--problem reentrant --param omega=3.9269908169872414"
     "reentrant_7pi4|--problem reentrant"
+    "slit|--problem reentrant --param omega=6.283185307179586"
     "linesing|--problem linesing"
     "multiple|--problem multiple")
   string(REPLACE "|" ";" _parts "${case}")

@@ -49,6 +49,35 @@ TEST(PointBoxTree, BoxQueriesReportEveryPointInsideOnceAndNoOther) {
   EXPECT_EQ(query(tree, Vec2(0.5, 0.5), 10, 10).size(), pts.size());
 }
 
+// Scales shape the splits only: the layer's points with thin scales (the band's queries) and
+// square ones elsewhere report exactly what the unscaled tree does.
+TEST(PointBoxTree, ScaledSplitsReportTheSamePoints) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec2> pts, scales;
+  for (int i = 0; i < 3000; ++i) {
+    pts.emplace_back(u(rng), 0.5 + 1e-4 * (u(rng) - 0.5));
+    scales.emplace_back(1e-2, 1e-6);
+  }
+  for (int i = 0; i < 1000; ++i) {
+    pts.emplace_back(u(rng), u(rng));
+    scales.emplace_back(1e-2, 1e-2);
+  }
+  for (int i = 0; i < 20; ++i) {  // duplicates, and scales 10³⁰⁰ apart
+    pts.push_back(pts[std::size_t(i * 11)]);
+    scales.emplace_back(1e-150, 1e150);
+  }
+  const PointBoxTree plain(pts), scaled(pts, {}, scales);
+  EXPECT_EQ(scaled.size(), int(pts.size()));
+  for (int q = 0; q < 400; ++q) {
+    const Vec2 p = q % 2 ? pts[std::size_t(q * 9)] : Vec2(1.4 * u(rng) - 0.2, 1.4 * u(rng) - 0.2);
+    const double rx = q % 3 == 0 ? 0.2 * u(rng) : 2e-2 * u(rng), ry = q % 5 == 0 ? 0.3 * u(rng) : 2e-6 * u(rng);
+    const std::vector<int> want = bruteForce(pts, p, rx, ry);
+    EXPECT_EQ(query(scaled, p, rx, ry), want) << "query " << q;
+    EXPECT_EQ(query(plain, p, rx, ry), want) << "query " << q;
+  }
+}
+
 TEST(PointBoxTree, EmptyAndTinySets) {
   const PointBoxTree none(std::vector<Vec2>{});
   EXPECT_TRUE(query(none, Vec2(0, 0), 1, 1).empty());

@@ -5,8 +5,9 @@
 
 #include "ablmg/core/error.hpp"
 
-#include <cairo.h>
 #include <gtest/gtest.h>
+
+#include "png_pixels.hpp"
 
 #include <filesystem>
 #include <unistd.h>
@@ -15,23 +16,8 @@ using namespace ablmg;
 using V3 = Eigen::Vector3d;
 
 namespace {
-struct Png {
-  cairo_surface_t* s;
-  explicit Png(const std::string& p) : s(cairo_image_surface_create_from_png(p.c_str())) {}
-  ~Png() { cairo_surface_destroy(s); }
-  bool ok() const { return cairo_surface_status(s) == CAIRO_STATUS_SUCCESS; }
-  int width() const { return cairo_image_surface_get_width(s); }
-  int height() const { return cairo_image_surface_get_height(s); }
-  std::array<int, 3> rgb(int x, int y) const {
-    cairo_surface_flush(s);
-    const auto* row = cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s);
-    const uint32_t p = reinterpret_cast<const uint32_t*>(row)[x];
-    return {int((p >> 16) & 255), int((p >> 8) & 255), int(p & 255)};
-  }
-};
-std::string tmp(const std::string& n) {
-  return (std::filesystem::temp_directory_path() / ("ablmg_surfpic_" + std::to_string(::getpid()) + n)).string();
-}
+using test::Png;
+std::string tmp(const std::string& n) { return test::tempPath("ablmg_surfpic_", n); }
 }  // namespace
 
 TEST(SurfacePicture, WritesPngOfRequestedWidth) {

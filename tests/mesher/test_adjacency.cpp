@@ -46,6 +46,21 @@ Cloud layerCloud(int n, std::uint64_t seed) {
   return c;
 }
 
+/// A hexagonal packing of na × nb bubbles at spacing 0.05, each jittered by up to ±0.005 (draws
+/// from `jitter`, uniform in [−1, 1]), sizes graded along the rows, h = 0.05 (1 + amp sin(freq a)),
+/// with aspect `ratio` at angle `theta`.
+Cloud jitteredPacking(int na, int nb, double amp, double freq, double ratio, double theta, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> jitter(-1, 1);
+  Cloud c;
+  for (int a = 0; a < na; ++a)
+    for (int b = 0; b < nb; ++b) {
+      const double h = 0.05 * (1 + amp * std::sin(freq * a));
+      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * jitter(rng), 0.05 * 0.866 * b + 0.005 * jitter(rng)));
+      c.m.push_back(Metric2::fromSizes(h, ratio * h, theta));
+    }
+  return c;
+}
+
 /// A population edit: c without its nodes i with i % k == r, then `extra` appended; map old →
 /// new id (−1 = deleted), new nodes from firstNew.
 struct EditedCloud {
@@ -105,15 +120,8 @@ TEST(Adjacency, BuildEqualsBruteForceAndIsSymmetric) {
 
 TEST(Adjacency, RefreshAfterSmallMovesEqualsRebuild) {
   // a jittered packing (the refresh relies on every new neighbour being within two hops)
-  Cloud c;
   std::mt19937_64 jr(4);
-  std::uniform_real_distribution<double> ju(-1, 1);
-  for (int a = 0; a < 50; ++a)
-    for (int b = 0; b < 40; ++b) {
-      const double h = 0.05 * (1 + 0.1 * std::sin(0.1 * a));
-      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * ju(jr), 0.05 * 0.866 * b + 0.005 * ju(jr)));
-      c.m.push_back(Metric2::fromSizes(h, 0.9 * h, 0.3));
-    }
+  Cloud c = jitteredPacking(50, 40, 0.1, 0.1, 0.9, 0.3, jr);
   const AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
   std::mt19937_64 rng(1);
   std::normal_distribution<double> g(0, 0.02);
@@ -129,15 +137,9 @@ TEST(Adjacency, LocalRefreshAroundMovedBubblesEqualsRebuild) {
   // A jittered packing; 40 bubbles (and only they) move by up to 0.1 of their size: the rows
   // around them are recomputed and the rest patched symmetrically, which must give exactly
   // the lists of a rebuild (rows far from every mover cannot have changed).
-  Cloud c;
   std::mt19937_64 jr(5);
+  Cloud c = jitteredPacking(50, 40, 0.1, 0.1, 0.9, 0.3, jr);
   std::uniform_real_distribution<double> ju(-1, 1);
-  for (int a = 0; a < 50; ++a)
-    for (int b = 0; b < 40; ++b) {
-      const double h = 0.05 * (1 + 0.1 * std::sin(0.1 * a));
-      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * ju(jr), 0.05 * 0.866 * b + 0.005 * ju(jr)));
-      c.m.push_back(Metric2::fromSizes(h, 0.9 * h, 0.3));
-    }
   AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
   const AdjacencyLists before = a;
   std::vector<int> movers;
@@ -158,15 +160,9 @@ TEST(Adjacency, RepeatedLocalRefreshesWithRowSlackEqualRebuild) {
   // Ten rounds of small moves of a few bubbles each, refreshed in place: the first round lays
   // the rows out with slack, later ones rewrite rows inside their capacity. After every round
   // the rows read through neighbours() and the compacted lists equal a rebuild.
-  Cloud c;
   std::mt19937_64 jr(8);
+  Cloud c = jitteredPacking(40, 30, 0.2, 0.15, 0.8, 0.2, jr);
   std::uniform_real_distribution<double> ju(-1, 1);
-  for (int a = 0; a < 40; ++a)
-    for (int b = 0; b < 30; ++b) {
-      const double h = 0.05 * (1 + 0.2 * std::sin(0.15 * a));
-      c.x.push_back(Vec2(0.05 * (a + 0.5 * b) + 0.005 * ju(jr), 0.05 * 0.866 * b + 0.005 * ju(jr)));
-      c.m.push_back(Metric2::fromSizes(h, 0.8 * h, 0.2));
-    }
   AdjacencyLists a = buildAdjacency(c.x, c.m, 1.7);
   bool sawSlack = false;
   for (int round = 0; round < 10; ++round) {
