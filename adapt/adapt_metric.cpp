@@ -93,6 +93,7 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     const double s = complexityForVertices(targetVertices) / metricComplexity(mesh, metric);
     for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
   }
+  if (mo.saddleShape > 0) r.rows = saddleLatticeRows(hessians, mo);
   r.secondsMetric = watch.seconds();
   return r;
 }
