@@ -156,6 +156,38 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
   return u.squaredNorm() < v.squaredNorm();
 }
 
+/// Symmetric CSR rows of the links (i, j) (each listed once), each row sorted by id with its
+/// counter-clockwise order.
+Links linksFromPairs(std::span<const Vec2> pos, std::vector<std::pair<int, int>> pairs, int threads) {
+  const int n = int(pos.size());
+  Links links;
+  links.offsets.assign(n + 1, 0);
+  for (const auto& [i, j] : pairs) {
+    ++links.offsets[i + 1];
+    ++links.offsets[j + 1];
+  }
+  for (int i = 0; i < n; ++i) links.offsets[i + 1] += links.offsets[i];
+  links.ids.resize(links.offsets[n]);
+  links.ccw.resize(links.offsets[n]);
+  {
+    std::vector<int> fill(links.offsets.begin(), links.offsets.end() - 1);
+    for (const auto& [i, j] : pairs) {
+      links.ids[std::size_t(fill[std::size_t(i)]++)] = j;
+      links.ids[std::size_t(fill[std::size_t(j)]++)] = i;
+    }
+  }
+  pairs = {};
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
+    std::sort(links.ids.begin() + b, links.ids.begin() + b + m);
+    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
+    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
+              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
+  }
+  return links;
+}
+
 /// Step 1 (paper §4.1): the links, adjacency pairs of used nodes inside the domain (not
 /// leaving a boundary node's angle, not crossing a boundary edge), plus every boundary edge;
 /// rows sorted by id, with their counter-clockwise order.
@@ -230,32 +262,7 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
                         std::find(pairs.begin() + std::ptrdiff_t(found), pairs.end(), std::pair{lo, hi}) != pairs.end();
     if (!listed) pairs.emplace_back(lo, hi);
   }
-  // Symmetric CSR rows, then each row sorted by id with its counter-clockwise order.
-  Links links;
-  links.offsets.assign(n + 1, 0);
-  for (const auto& [i, j] : pairs) {
-    ++links.offsets[i + 1];
-    ++links.offsets[j + 1];
-  }
-  for (int i = 0; i < n; ++i) links.offsets[i + 1] += links.offsets[i];
-  links.ids.resize(links.offsets[n]);
-  links.ccw.resize(links.offsets[n]);
-  {
-    std::vector<int> fill(links.offsets.begin(), links.offsets.end() - 1);
-    for (const auto& [i, j] : pairs) {
-      links.ids[std::size_t(fill[std::size_t(i)]++)] = j;
-      links.ids[std::size_t(fill[std::size_t(j)]++)] = i;
-    }
-  }
-  pairs = {};
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int i = 0; i < n; ++i) {
-    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
-    std::sort(links.ids.begin() + b, links.ids.begin() + b + m);
-    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
-    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
-              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
-  }
+  Links links = linksFromPairs(pos, std::move(pairs), threads);
   st.longLinksDropped = longLinks;
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
