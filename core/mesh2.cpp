@@ -23,27 +23,92 @@ struct HalfEdge {
   }
 };
 
-/// All half-edges in HalfEdge order: a counting sort on `lo` (O(V + T)), then each bucket
-/// (a vertex's few edges) sorted on its own. Vertex ids out of range go in one last bucket,
-/// sorted in full (validate() reports them; no out-of-bounds access on the way).
-std::vector<HalfEdge> halfEdges(const Mesh2& m) {
-  const int nv = m.numVertices();
-  std::vector<int> start(static_cast<std::size_t>(nv) + 2, 0);
-  auto bucket = [nv](int lo) { return lo >= 0 && lo < nv ? lo : nv; };
-  for (const auto& tr : m.triangles)
-    for (int k = 0; k < 3; ++k) ++start[std::size_t(bucket(std::min(tr[k], tr[(k + 1) % 3]))) + 1];
-  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
-  std::vector<HalfEdge> h(3 * m.triangles.size());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int t = 0; t < m.numTriangles(); ++t) {
-    const auto& tr = m.triangles[t];
+/// Triangles per chunk of the parallel loops below: sums over chunks of a fixed size, added
+/// in chunk order, are the same for any thread count.
+constexpr int kChunk = 1 << 14;
+/// Below this many triangles the loops run on one thread.
+constexpr int kParallelTriangles = 1 << 15;
+
+/// All half-edges in HalfEdge order, and start[v] = the first with lo = v (start[nv] = the
+/// first whose lo is out of range, start[nv + 1] = the end): a counting sort on `lo`
+/// (O(V + T)), then each bucket (a vertex's few edges) sorted on its own. In parallel the
+/// buckets fill in any order, but each is then sorted on the whole key (unique: the triangle
+/// differs), so the result does not depend on the threads. Vertex ids out of range go in one
+/// last bucket, sorted in full (validate() reports them; no out-of-bounds access on the way).
+struct HalfEdges {
+  std::vector<HalfEdge> h;
+  std::vector<int> start;
+};
+
+HalfEdges halfEdges(const Mesh2& m) {
+  const int nv = m.numVertices(), nt = m.numTriangles();
+  HalfEdges r;
+  auto& start = r.start;
+  start.assign(static_cast<std::size_t>(nv) + 2, 0);
+  auto bucket = [nv](int lo) { return std::size_t(lo >= 0 && lo < nv ? lo : nv); };
+  const bool parallel = nt >= kParallelTriangles;
+#pragma omp parallel for schedule(static) if (parallel)
+  for (int t = 0; t < nt; ++t) {
+    const auto& tr = m.triangles[std::size_t(t)];
     for (int k = 0; k < 3; ++k) {
-      const int a = tr[k], b = tr[(k + 1) % 3];
-      h[std::size_t(fill[std::size_t(bucket(std::min(a, b)))]++)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+      int& c = start[bucket(std::min(tr[k], tr[(k + 1) % 3])) + 1];
+#pragma omp atomic
+      ++c;
     }
   }
-  for (int v = 0; v <= nv; ++v) std::sort(h.begin() + start[std::size_t(v)], h.begin() + start[std::size_t(v) + 1]);
-  return h;
+  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
+  r.h.resize(3 * m.triangles.size());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+#pragma omp parallel for schedule(static) if (parallel)
+  for (int t = 0; t < nt; ++t) {
+    const auto& tr = m.triangles[std::size_t(t)];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tr[k], b = tr[(k + 1) % 3];
+      int& f = fill[bucket(std::min(a, b))];
+      int slot;
+#pragma omp atomic capture
+      slot = f++;
+      r.h[std::size_t(slot)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+    }
+  }
+#pragma omp parallel for schedule(static, 4096) if (parallel)
+  for (int v = 0; v <= nv; ++v) std::sort(r.h.begin() + start[std::size_t(v)], r.h.begin() + start[std::size_t(v) + 1]);
+  return r;
+}
+
+/// validate()'s fast path: true when every triangle's vertex ids are in range and it is
+/// counter-clockwise (orient2d > 0), every vertex is used, and then `area` = the sum of the
+/// triangle areas (chunk sums in chunk order). False: the serial checks find and name the
+/// problem.
+bool trianglesLookValid(const Mesh2& m, double& area) {
+  const int nv = m.numVertices(), nt = m.numTriangles();
+  const int chunks = (nt + kChunk - 1) / kChunk;
+  std::vector<double> part(std::size_t(chunks), 0.0);
+  std::vector<char> used(std::size_t(nv), 0);
+  int bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad) if (nt >= kParallelTriangles)
+  for (int c = 0; c < chunks; ++c) {
+    double sum = 0;
+    for (int t = c * kChunk; t < std::min(nt, (c + 1) * kChunk); ++t) {
+      const auto& tr = m.triangles[std::size_t(t)];
+      if (std::min({tr[0], tr[1], tr[2]}) < 0 || std::max({tr[0], tr[1], tr[2]}) >= nv) {
+        ++bad;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        char& u = used[std::size_t(tr[k])];
+#pragma omp atomic write
+        u = 1;
+      }
+      bad += orient2d(m.vertices[tr[0]], m.vertices[tr[1]], m.vertices[tr[2]]) <= 0;
+      sum += m.triangleArea(t);
+    }
+    part[std::size_t(c)] = sum;
+  }
+  if (bad > 0 || std::find(used.begin(), used.end(), 0) != used.end()) return false;
+  area = 0;
+  for (const double a : part) area += a;
+  return true;
 }
 
 }  // namespace
@@ -87,6 +152,7 @@ class MeshChecks {
 
   /// Vertex ids in range, positive orientation (exact predicate), every vertex used; sums the area.
   bool triangles() {
+    if (trianglesLookValid(m_, r.area)) return true;  // in parallel; the serial pass names a problem
     std::vector<char> used(nv_, 0);
     for (int t = 0; t < m_.numTriangles(); ++t) {
       const auto& tr = m_.triangles[t];
@@ -139,35 +205,63 @@ class MeshChecks {
     const auto refOf = [&](int t) {
       return std::size_t(t) < m_.triangleRefs.size() ? m_.triangleRefs[std::size_t(t)] : 0;
     };
-    const auto h = halfEdges(m_);
-    for (std::size_t i = 0; i < h.size();) {
-      std::size_t j = i;
-      while (j < h.size() && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+    const HalfEdges he = halfEdges(m_);  // named members, not a structured binding: the
+    const auto& h = he.h;                // lambdas below capture them (clang 14)
+    // One run of half-edges with the same end points, h[i, j): an interior edge in two
+    // triangles of opposite orientation, or a boundary edge in one. `report`: name the problem
+    // (serial) or only return false. Each run writes its own bndUsed / itfUsed entries.
+    const auto run = [&](std::size_t i, std::size_t j, bool report) {
       const std::size_t count = j - i;
       const auto name = [&] { return "edge (" + id(h[i].lo) + ", " + id(h[i].hi) + ")"; };
       const auto inItf = std::lower_bound(itf.begin(), itf.end(), EdgeKey{h[i].lo, h[i].hi});
       const bool isItf = inItf != itf.end() && *inItf == EdgeKey{h[i].lo, h[i].hi};
       if (isItf) itfUsed[std::size_t(inItf - itf.begin())] = 1;
       if (count == 2 && h[i].forward != h[i + 1].forward) {
-        if (!isItf && refOf(h[i].tri) != refOf(h[i + 1].tri))
+        if (isItf || refOf(h[i].tri) == refOf(h[i + 1].tri)) return true;
+        if (report)
           problem(name() + " separates subdomains " + std::to_string(refOf(h[i].tri)) + " and " +
                   std::to_string(refOf(h[i + 1].tri)) + " but is not an interface edge");
-      } else if (count == 1) {
+        return false;
+      }
+      if (count == 1) {
+        if (isItf && !report) return false;
         if (isItf) problem("interface " + name() + " lies in one triangle (a boundary edge, not an interior one)");
         const EdgeKey dir = h[i].forward ? EdgeKey{h[i].lo, h[i].hi} : EdgeKey{h[i].hi, h[i].lo};
         const auto it = std::lower_bound(bnd.begin(), bnd.end(), dir);
-        if (it == bnd.end() || *it != dir) {
-          ++r.openEdges;
-          problem(name() + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
-        } else {
+        if (it != bnd.end() && *it == dir) {
           bndUsed[std::size_t(it - bnd.begin())] = 1;
+          return !isItf;
         }
-      } else {
-        ++r.nonManifoldEdges;
-        problem(name() + " lies in " + std::to_string(count) + " triangles" +
-                (count == 2 ? " with the same orientation" : ""));
+        if (!report) return false;
+        ++r.openEdges;
+        problem(name() + " lies in one triangle but is not a boundary edge (a gap or an overlap)");
+        return false;
       }
-      i = j;
+      if (!report) return false;
+      ++r.nonManifoldEdges;
+      problem(name() + " lies in " + std::to_string(count) + " triangles" +
+              (count == 2 ? " with the same orientation" : ""));
+      return false;
+    };
+    const auto runsIn = [&](std::size_t first, std::size_t last, bool report) {
+      bool ok = true;
+      for (std::size_t i = first; i < last;) {
+        std::size_t j = i;
+        while (j < last && h[j].lo == h[i].lo && h[j].hi == h[i].hi) ++j;
+        ok = run(i, j, report) && ok;
+        i = j;
+      }
+      return ok;
+    };
+    // In parallel by vertex buckets (a run never crosses one); the serial pass names a problem.
+    int bad = 0;
+#pragma omp parallel for schedule(static, 4096) reduction(+ : bad) if (m_.numTriangles() >= kParallelTriangles)
+    for (int v = 0; v <= nv_; ++v)
+      bad += !runsIn(std::size_t(he.start[std::size_t(v)]), std::size_t(he.start[std::size_t(v) + 1]), false);
+    if (bad > 0) {
+      std::fill(bndUsed.begin(), bndUsed.end(), 0);
+      std::fill(itfUsed.begin(), itfUsed.end(), 0);
+      runsIn(0, h.size(), true);
     }
     for (std::size_t k = 0; k < bnd.size(); ++k)
       if (!bndUsed[k]) {
@@ -250,7 +344,7 @@ std::vector<std::array<int, 2>> Mesh2::edges() const {
     return std::min({tr[0], tr[1], tr[2]}) >= 0 && std::max({tr[0], tr[1], tr[2]}) < nv;
   });
   if (inRange) {  // from the half-edges (counting sort, O(V + T)): the same order as sorting
-    const auto h = halfEdges(*this);
+    const auto h = halfEdges(*this).h;
     e.reserve(h.size() / 2 + 1);
     for (const auto& x : h)
       if (e.empty() || e.back()[0] != x.lo || e.back()[1] != x.hi) e.push_back({x.lo, x.hi});
@@ -266,7 +360,8 @@ std::vector<std::array<int, 2>> Mesh2::edges() const {
 
 std::vector<std::array<int, 3>> Mesh2::triangleNeighbours() const {
   std::vector<std::array<int, 3>> nb(triangles.size(), {-1, -1, -1});
-  const auto h = halfEdges(*this);
+  const HalfEdges he = halfEdges(*this);
+  const auto& h = he.h;
   auto localEdge = [&](int t, int lo, int hi) {
     const auto& tr = triangles[t];
     for (int k = 0; k < 3; ++k) {
@@ -275,11 +370,17 @@ std::vector<std::array<int, 3>> Mesh2::triangleNeighbours() const {
     }
     return -1;
   };
-  for (std::size_t i = 0; i + 1 < h.size(); ++i)
-    if (h[i].lo == h[i + 1].lo && h[i].hi == h[i + 1].hi) {
-      nb[h[i].tri][localEdge(h[i].tri, h[i].lo, h[i].hi)] = h[i + 1].tri;
-      nb[h[i + 1].tri][localEdge(h[i + 1].tri, h[i].lo, h[i].hi)] = h[i].tri;
-    }
+  // By vertex buckets: every write for an edge comes from its own bucket, in the serial order.
+  const int nv = numVertices();
+#pragma omp parallel for schedule(static, 4096) if (numTriangles() >= kParallelTriangles)
+  for (int v = 0; v <= nv; ++v) {
+    const std::size_t last = std::size_t(he.start[std::size_t(v) + 1]);
+    for (std::size_t i = std::size_t(he.start[std::size_t(v)]); i + 1 < last; ++i)
+      if (h[i].lo == h[i + 1].lo && h[i].hi == h[i + 1].hi) {
+        nb[h[i].tri][localEdge(h[i].tri, h[i].lo, h[i].hi)] = h[i + 1].tri;
+        nb[h[i + 1].tri][localEdge(h[i + 1].tri, h[i].lo, h[i].hi)] = h[i].tri;
+      }
+  }
   return nb;
 }
 

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <omp.h>
+
 namespace ablmg::fem {
 namespace {
 
@@ -190,51 +192,67 @@ void numberDofs(const Mesh2& mesh, const PoissonProblem& problem, LinearSystem& 
   requireDirichletInEveryPiece(mesh, isDirichlet);
 }
 
+/// Systems this large build their pattern and scatter their elements on all threads.
+constexpr int kParallelUnknowns = 20000;
+
 /// 1. Sparsity pattern: column d holds the free vertices sharing a triangle with vertex d;
-/// values 0, b = 0.
+/// values 0, b = 0. Each thread builds the columns of one contiguous range of dofs; the
+/// ranges are concatenated in order (the same pattern on any thread count).
 void buildPattern(const Mesh2& mesh, LinearSystem& sys) {
   const int n = int(sys.vertexOfDof.size());
   const Mesh2::VertexTriangles vt = mesh.vertexTriangles();
-  std::vector<int> outer(n + 1, 0), inner;
-  inner.reserve(std::size_t(n) * 7);
-  std::vector<int> buf;
-  for (int d = 0; d < n; ++d) {
-    const int v = sys.vertexOfDof[d];
-    buf.clear();
-    for (int k = vt.offsets[v]; k < vt.offsets[v + 1]; ++k)
-      for (int w : mesh.triangles[vt.ids[k]])
-        if (sys.dofOfVertex[w] >= 0) buf.push_back(sys.dofOfVertex[w]);
-    std::sort(buf.begin(), buf.end());
-    buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
-    inner.insert(inner.end(), buf.begin(), buf.end());
-    outer[d + 1] = int(inner.size());
+  std::vector<int> outer(std::size_t(n) + 1, 0);
+  std::vector<std::vector<int>> chunks(std::size_t(std::max(1, omp_get_max_threads())));
+#pragma omp parallel if (n >= kParallelUnknowns)
+  {
+    const int nt = std::min(omp_get_num_threads(), int(chunks.size())), t = omp_get_thread_num();
+    if (t < nt) {
+      const int d0 = int(long(n) * t / nt), d1 = int(long(n) * (t + 1) / nt);
+      std::vector<int>& inner = chunks[std::size_t(t)];
+      inner.reserve(std::size_t(d1 - d0) * 7);
+      std::vector<int> buf;
+      for (int d = d0; d < d1; ++d) {
+        const int v = sys.vertexOfDof[std::size_t(d)];
+        buf.clear();
+        for (int k = vt.offsets[std::size_t(v)]; k < vt.offsets[std::size_t(v) + 1]; ++k)
+          for (int w : mesh.triangles[std::size_t(vt.ids[std::size_t(k)])])
+            if (sys.dofOfVertex[std::size_t(w)] >= 0) buf.push_back(sys.dofOfVertex[std::size_t(w)]);
+        std::sort(buf.begin(), buf.end());
+        buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
+        inner.insert(inner.end(), buf.begin(), buf.end());
+        outer[std::size_t(d) + 1] = int(buf.size());
+      }
+    }
   }
+  for (int d = 0; d < n; ++d) outer[std::size_t(d) + 1] += outer[std::size_t(d)];
   sys.A.resize(n, n);
-  sys.A.resizeNonZeros(Eigen::Index(inner.size()));
+  sys.A.resizeNonZeros(Eigen::Index(outer[std::size_t(n)]));
   std::copy(outer.begin(), outer.end(), sys.A.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), sys.A.innerIndexPtr());
-  std::fill(sys.A.valuePtr(), sys.A.valuePtr() + inner.size(), 0.0);
+  int* innerOut = sys.A.innerIndexPtr();
+  for (const std::vector<int>& chunk : chunks) innerOut = std::copy(chunk.begin(), chunk.end(), innerOut);
+  std::fill(sys.A.valuePtr(), sys.A.valuePtr() + outer[std::size_t(n)], 0.0);
   sys.b = Eigen::VectorXd::Zero(n);
 }
 
-/// Adds one element's data into the pattern and the load (Dirichlet columns lifted to b).
-void scatterElement(const std::array<int, 3>& tri, const ElementData& d, LinearSystem& sys) {
+/// Adds one element's data into the pattern and the load (Dirichlet columns lifted to b),
+/// for the rows (dofs) in [rowBegin, rowEnd) only.
+void scatterElement(const std::array<int, 3>& tri, const ElementData& d, LinearSystem& sys, int rowBegin, int rowEnd) {
   double* values = sys.A.valuePtr();
   const int* outer = sys.A.outerIndexPtr();
   for (int k = 0; k < 3; ++k) {
     const int dk = sys.dofOfVertex[tri[k]];
-    if (dk < 0) continue;
+    if (dk < rowBegin || dk >= rowEnd) continue;  // Dirichlet (−1) or another thread's row
     sys.b[dk] += d.load[k];
-    const int* rowBegin = sys.A.innerIndexPtr() + outer[dk];
-    const int* rowEnd = sys.A.innerIndexPtr() + outer[dk + 1];
+    const int* colBegin = sys.A.innerIndexPtr() + outer[dk];
+    const int* colEnd = sys.A.innerIndexPtr() + outer[dk + 1];
     for (int l = 0; l < 3; ++l) {
       const int dl = sys.dofOfVertex[tri[l]];
       if (dl < 0) {
         sys.b[dk] -= d.a[k][l] * sys.dirichletValues[tri[l]];  // lifting
         continue;
       }
-      const int* it = std::find(rowBegin, rowEnd, dl);
-      ABLMG_ASSERT(it != rowEnd, "pattern misses (" << dl << ", " << dk << ")");
+      const int* it = std::find(colBegin, colEnd, dl);
+      ABLMG_ASSERT(it != colEnd, "pattern misses (" << dl << ", " << dk << ")");
       values[it - sys.A.innerIndexPtr()] += d.a[k][l];
     }
   }
@@ -242,12 +260,14 @@ void scatterElement(const std::array<int, 3>& tri, const ElementData& d, LinearS
 
 /// 2. Element loop: local stiffness and load, scattered into the pattern. Local data are
 ///    computed in blocks (in parallel when the problem's functions allow it), then scattered
-///    serially in triangle order, so the result is bitwise the same for any thread count.
+///    in triangle order, each thread adding into the rows of its own range of dofs: every
+///    entry sums its terms in triangle order, so the result is bitwise the same for any
+///    thread count.
 void assembleElements(const Mesh2& mesh, const PoissonProblem& problem, LinearSystem& sys) {
-  const int nt = mesh.numTriangles();
+  const int nt = mesh.numTriangles(), n = int(sys.A.rows());
   const TriangleRule& rule = triangleRule(5);
-  constexpr int kBlock = 16384;  // block data stay in cache for the serial scatter
-  std::vector<ElementData> block(std::min(nt, kBlock));
+  constexpr int kBlock = 16384;  // block data stay in cache for the scatter
+  std::vector<ElementData> block(std::size_t(std::min(nt, kBlock)));
   const bool parallel = problem.threadSafeFunctions && nt >= 2 * kBlock;
   for (int t0 = 0; t0 < nt; t0 += kBlock) {
     const int t1 = std::min(nt, t0 + kBlock);
@@ -255,7 +275,12 @@ void assembleElements(const Mesh2& mesh, const PoissonProblem& problem, LinearSy
 #pragma omp parallel for schedule(static) if (parallel)
     for (int t = t0; t < t1; ++t) failure.run(t, [&] { computeElement(mesh, problem, rule, t, block[t - t0]); });
     failure.rethrow();
-    for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys);
+#pragma omp parallel if (n >= kParallelUnknowns)
+    {
+      const int threads = omp_get_num_threads(), th = omp_get_thread_num();
+      const int r0 = int(long(n) * th / threads), r1 = int(long(n) * (th + 1) / threads);
+      for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys, r0, r1);
+    }
   }
 }
 

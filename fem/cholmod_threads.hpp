@@ -1,5 +1,6 @@
 #pragma once
-/// CHOLMOD's own OpenMP loops, run by the calling thread alone while a CholmodScope lives.
+/// CHOLMOD's own OpenMP loops, run by the calling thread alone while a CholmodScope lives;
+/// the BLAS thread policy and the factorisation settings of fem/.
 ///
 /// Debian's CHOLMOD (SuiteSparse 5) is built with `num_threads(4)` on the small loops of its
 /// supernodal factorisation and solves (zeroing a supernode, scattering A into it, clearing
@@ -23,6 +24,7 @@
 ///    waits for a descheduled helper (a 33k-unknown adapted mesh took 10–30 s wall for 0.26
 ///    GFlop in the adaptive loop). Two threads fixed in code, tried at 10⁵ and 10⁶ unknowns
 ///    on a loaded 2-core machine, took 1.2–1.7× the CPU of one thread and no less wall time.
+#include <cholmod.h>
 #include <omp.h>
 
 // OpenBLAS's thread-count setter, if the BLAS loaded at run time is OpenBLAS (weak: null
@@ -36,6 +38,31 @@ inline constexpr int kBlasThreads = 1;
 /// Sets OpenBLAS to kBlasThreads threads (process-wide; a no-op without OpenBLAS).
 inline void fixBlasThreads() {
   if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
+}
+
+/// CHOLMOD's per-supernode overhead, not its flops, dominates a 2-D P1 factorisation at
+/// 10⁵ unknowns: every supernode opens a few OpenMP regions (CHOLMOD's compiled-in loops; a
+/// team of one under CholmodScope still costs an allocation and a futex round each) and a
+/// handful of small BLAS calls. Two settings, both chosen by CHOLMOD's own symbolic counts
+/// (deterministic: the same matrix takes the same path):
+///  - supernodal = CHOLMOD_AUTO: a simplicial (up-looking) factorisation when the flops
+///    per factor entry are below CHOLMOD's supernodal_switch (40), i.e. when the fronts are
+///    too small for BLAS to pay. The tanh layer's adapted mesh (8.7·10⁴ unknowns, 0.05 GFlop,
+///    flops/nnz 30) takes it: 0.18 → 0.12 s CPU; the uniform and wave-front meshes (170–210)
+///    and the 10⁶ grid stay supernodal. final_ll: the simplicial path computes LLᵀ, whose
+///    non-positive pivot is an error (LDLᵀ would accept an indefinite matrix).
+///  - nrelax = {16, 64, 256} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
+///    small supernodes, allowing explicit zeros. On the uniform 317² grid 2.4× fewer OpenMP
+///    regions and 6.5 % fewer instructions (callgrind); {64, 256, 1024} doubles the
+///    instructions (the zeros' flops), zrelax changes did not help; the 10⁶ grid unchanged.
+/// Used by every Poisson factorisation (fem/solve.cpp, fem/split_cholesky.cpp). Measured with
+/// bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
+inline void configureFactorisation(cholmod_common& c) {
+  c.supernodal = CHOLMOD_AUTO;
+  c.final_ll = 1;
+  c.nrelax[0] = 16;
+  c.nrelax[1] = 64;
+  c.nrelax[2] = 256;
 }
 
 class CholmodScope {

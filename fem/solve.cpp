@@ -4,6 +4,7 @@
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/fem/cholmod_threads.hpp"
 #include "ablmg/fem/ordering.hpp"
+#include "ablmg/fem/split_cholesky.hpp"
 
 #include <Eigen/CholmodSupport>
 
@@ -15,30 +16,6 @@ namespace ablmg::fem {
 namespace {
 
 using Cholesky = Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>;
-
-/// CHOLMOD's per-supernode overhead, not its flops, dominates a 2-D P1 factorisation at
-/// 10⁵ unknowns: every supernode opens a few OpenMP regions (CHOLMOD's compiled-in loops; a
-/// team of one under CholmodScope still costs an allocation and a futex round each) and a
-/// handful of small BLAS calls. Two settings, both chosen by CHOLMOD's own symbolic counts
-/// (deterministic: the same matrix takes the same path):
-///  - supernodal = CHOLMOD_AUTO: a simplicial (up-looking) factorisation when the flops
-///    per factor entry are below CHOLMOD's supernodal_switch (40), i.e. when the fronts are
-///    too small for BLAS to pay. The tanh layer's adapted mesh (8.7·10⁴ unknowns, 0.05 GFlop,
-///    flops/nnz 30) takes it: 0.18 → 0.12 s CPU; the uniform and wave-front meshes (170–210)
-///    and the 10⁶ grid stay supernodal. final_ll: the simplicial path computes LLᵀ, whose
-///    non-positive pivot is an error (LDLᵀ would accept an indefinite matrix).
-///  - nrelax = {16, 64, 256} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
-///    small supernodes, allowing explicit zeros. On the uniform 317² grid 2.4× fewer OpenMP
-///    regions and 6.5 % fewer instructions (callgrind); {64, 256, 1024} doubles the
-///    instructions (the zeros' flops), zrelax changes did not help; the 10⁶ grid unchanged.
-/// Measured with bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
-void configureFactorisation(cholmod_common& c) {
-  c.supernodal = CHOLMOD_AUTO;
-  c.final_ll = 1;
-  c.nrelax[0] = 16;
-  c.nrelax[1] = 64;
-  c.nrelax[2] = 256;
-}
 
 /// The lower triangle of P A Pᵀ (new index k = position of old index order[k]), each column's
 /// rows sorted (CHOLMOD's `sorted` flag, set by Eigen's view, is then true). One pass over A;
@@ -74,17 +51,69 @@ Eigen::SparseMatrix<double> permutedLower(const Eigen::SparseMatrix<double>& A, 
   return L;
 }
 
-/// Factorises M with CHOLMOD; InputError if M is not SPD.
-void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M) {
+/// Factorises M with CHOLMOD (analysis, then numeric factorisation, timed apart in `stats`);
+/// InputError if M is not SPD.
+void factorise(Cholesky& llt, const Eigen::SparseMatrix<double>& M, SolveStats* stats) {
   llt.cholmod().print = 0;  // libraries never print: CHOLMOD's warnings become our InputError
   configureFactorisation(llt.cholmod());
   fixBlasThreads();
   const CholmodScope serial;
-  llt.compute(M);
+  Stopwatch watch;
+  llt.analyzePattern(M);
+  const double symbolic = watch.lap();
+  if (llt.info() == Eigen::Success) llt.factorize(M);
+  if (stats) {
+    stats->symbolicSeconds = symbolic;
+    stats->numericSeconds = watch.seconds();
+  }
   ABLMG_REQUIRE(llt.info() == Eigen::Success, "solve: CHOLMOD could not factorise the "
                                                   << M.rows() << "×" << M.rows()
                                                   << " stiffness matrix: it is not symmetric positive "
                                                      "definite (check kappa > 0 and the Dirichlet boundary)");
+}
+
+/// One CHOLMOD factorisation of the whole matrix: with our order (`order` non-empty) CHOLMOD
+/// gets the lower triangle of P A Pᵀ and keeps the order as it is, else CHOLMOD orders.
+Eigen::VectorXd solveWhole(const LinearSystem& system, const std::vector<int>& order, const std::vector<int>& position,
+                           SolveStats* stats) {
+  const Eigen::Index n = system.A.rows();
+  Cholesky llt;
+  Eigen::VectorXd x;
+  if (!order.empty()) {
+    const Stopwatch permuting;
+    const Eigen::SparseMatrix<double> Ap = permutedLower(system.A, order, position);
+    const double tPermute = permuting.seconds();
+    // Our order, as it is: no fill-reducing permutation and no etree postorder by CHOLMOD.
+    // Nested dissection with AMD leaves is close to a postorder already; CHOLMOD's weighted
+    // postorder only reorders siblings (same flops and factor non-zeros), and with it the
+    // factor counts as permuted, which makes cholmod_factorize transpose A twice per call.
+    llt.cholmod().nmethods = 1;
+    llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;
+    llt.cholmod().postorder = 0;
+    factorise(llt, Ap, stats);
+    if (stats) stats->symbolicSeconds += tPermute;
+    const Stopwatch watch;
+    Eigen::VectorXd bp(n);
+    for (Eigen::Index i = 0; i < n; ++i) bp[position[std::size_t(i)]] = system.b[i];
+    const CholmodScope serial;
+    const Eigen::VectorXd xp = llt.solve(bp);
+    x.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) x[i] = xp[position[std::size_t(i)]];
+    if (stats) stats->triangularSeconds = watch.seconds();
+  } else {
+    factorise(llt, system.A, stats);
+    const Stopwatch watch;
+    const CholmodScope serial;
+    x = llt.solve(system.b);
+    if (stats) stats->triangularSeconds = watch.seconds();
+  }
+  ABLMG_REQUIRE(llt.info() == Eigen::Success && x.allFinite(),
+                "solve: CHOLMOD's triangular solves failed (matrix " << n << "×" << n << ")");
+  if (stats) {
+    stats->factorNonZeros = llt.cholmod().lnz;
+    stats->factorFlops = llt.cholmod().fl;
+  }
+  return x;
 }
 
 }  // namespace
@@ -93,49 +122,39 @@ Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats, const
   const Stopwatch watch;
   const Eigen::Index n = system.A.rows();
   ABLMG_REQUIRE(n > 0, "solve: the system has no unknowns (every vertex is a Dirichlet vertex)");
-  Cholesky llt;
-  Eigen::VectorXd x;
-  double orderingSeconds = 0;
+  SolveStats local;
+  SolveStats& st = stats ? *stats : local;
+  std::vector<int> order, position;
+  TopCut top;
   if (options.ordering != Ordering::Cholmod) {
     ABLMG_REQUIRE(
         options.ordering == Ordering::Metis || Eigen::Index(system.dofPoints.size()) == n,
         "solve: geometric ordering needs dofPoints (" << system.dofPoints.size() << " for " << n << " unknowns)");
-    const std::vector<int> order =
-        options.ordering == Ordering::Metis
-            ? metisNestedDissection(system.A)
-            : geometricNestedDissection(system.A, system.dofPoints, options.leafSize, options.cut);
-    std::vector<int> position(static_cast<std::size_t>(n));  // old index → new index
+    order = options.ordering == Ordering::Metis
+                ? metisNestedDissection(system.A)
+                : geometricNestedDissection(system.A, system.dofPoints, options.leafSize, options.cut, &top);
+    position.resize(static_cast<std::size_t>(n));  // old index → new index
     for (int k = 0; k < int(n); ++k) position[std::size_t(order[std::size_t(k)])] = k;
-    const Eigen::SparseMatrix<double> Ap = permutedLower(system.A, order, position);
-    orderingSeconds = watch.seconds();
-    // Our order, as it is: no fill-reducing permutation and no etree postorder by CHOLMOD.
-    // Nested dissection with AMD leaves is close to a postorder already; CHOLMOD's weighted
-    // postorder only reorders siblings (same flops and factor non-zeros), and with it the
-    // factor counts as permuted, which makes cholmod_factorize transpose A twice per call.
-    llt.cholmod().nmethods = 1;
-    llt.cholmod().method[0].ordering = CHOLMOD_NATURAL;
-    llt.cholmod().postorder = 0;
-    factorise(llt, Ap);
-    Eigen::VectorXd bp(n);
-    for (Eigen::Index i = 0; i < n; ++i) bp[position[std::size_t(i)]] = system.b[i];
-    const CholmodScope serial;
-    const Eigen::VectorXd xp = llt.solve(bp);
-    x.resize(n);
-    for (Eigen::Index i = 0; i < n; ++i) x[i] = xp[position[std::size_t(i)]];
-  } else {
-    factorise(llt, system.A);
-    const CholmodScope serial;
-    x = llt.solve(system.b);
   }
-  ABLMG_REQUIRE(llt.info() == Eigen::Success && x.allFinite(),
-                "solve: CHOLMOD's triangular solves failed (matrix " << n << "×" << n << ")");
+  st.orderingSeconds = watch.seconds();
+  Eigen::VectorXd x;
+  if (n >= options.splitMinUnknowns && top.lower > 0 && top.upper > 0) {
+    SplitCholeskyStats split;
+    x = splitCholeskySolve(system.A, order, position, top.lower, top.upper, system.b, &split);
+    ABLMG_REQUIRE(x.allFinite(),
+                  "solve: the triangular solves gave non-finite values (matrix " << n << "×" << n << ")");
+    st.symbolicSeconds = split.symbolicSeconds;
+    st.numericSeconds = split.numericSeconds;
+    st.triangularSeconds = split.solveSeconds;
+    st.factorNonZeros = split.factorNonZeros;
+    st.factorFlops = split.factorFlops;
+  } else {
+    x = solveWhole(system, order, position, &st);
+  }
+  st.solveSeconds = watch.seconds();
+  st.unknowns = int(n);
+  st.nonZeros = long(system.A.nonZeros());
   if (stats) {
-    stats->solveSeconds = watch.seconds();
-    stats->orderingSeconds = orderingSeconds;
-    stats->unknowns = int(n);
-    stats->nonZeros = long(system.A.nonZeros());
-    stats->factorNonZeros = llt.cholmod().lnz;
-    stats->factorFlops = llt.cholmod().fl;
     const double bn = system.b.norm();
     stats->residual = bn > 0 ? (system.A * x - system.b).norm() / bn : (system.A * x).norm();
   }

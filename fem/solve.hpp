@@ -44,16 +44,23 @@ struct SolveOptions {
   Ordering ordering = Ordering::GeometricNestedDissection;
   int leafSize = 500;                            ///< pieces this small are ordered by AMD (geometric ordering only)
   CutChoice cut = CutChoice::SmallestSeparator;  ///< geometric ordering only
+  /// Geometric ordering, at least this many unknowns: the two sides of the first cut are
+  /// factorised apart, on two threads when there are two (fem/split_cholesky.hpp); below,
+  /// one CHOLMOD factorisation. Either way the result is the same for any thread count.
+  int splitMinUnknowns = 20000;
 };
 
 struct SolveStats {
-  double assemblySeconds = 0;  ///< wall time of assemble()
-  double orderingSeconds = 0;  ///< wall time of our ordering (geometric or METIS) + permutation
-  double solveSeconds = 0;     ///< wall time of ordering + factorisation + triangular solves
-  int unknowns = 0;            ///< free vertices (size of A)
-  long nonZeros = 0;           ///< stored non-zeros of A (both halves)
-  double factorNonZeros = 0;   ///< non-zeros of the Cholesky factor L (CHOLMOD's lnz)
-  double factorFlops = 0;      ///< floating-point operations of the factorisation (CHOLMOD's fl)
+  double assemblySeconds = 0;    ///< wall time of assemble()
+  double orderingSeconds = 0;    ///< wall time of our ordering (geometric or METIS) + permutation
+  double solveSeconds = 0;       ///< wall time of ordering + factorisation + triangular solves
+  double symbolicSeconds = 0;    ///< of which: the permuted matrix and CHOLMOD's symbolic analysis
+  double numericSeconds = 0;     ///< of which: the numeric factorisation
+  double triangularSeconds = 0;  ///< of which: the triangular solves (and the permutation of b, x)
+  int unknowns = 0;              ///< free vertices (size of A)
+  long nonZeros = 0;             ///< stored non-zeros of A (both halves)
+  double factorNonZeros = 0;     ///< non-zeros of the Cholesky factor L (CHOLMOD's lnz)
+  double factorFlops = 0;        ///< floating-point operations of the factorisation (CHOLMOD's fl)
   int dirichletVertices = 0;
   double residual = 0;  ///< ‖A x − b‖₂ / ‖b‖₂ of the computed solution (0 if b = 0)
 };

@@ -1,6 +1,7 @@
 #include "ablmg/mesher/initial_placement.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/predicates.hpp"
 #include "ablmg/mesher/adjacency.hpp"
 #include "ablmg/mesher/parallel_threshold.hpp"
@@ -348,11 +349,213 @@ const char* latticeOrientationName(LatticeOrientation orientation) {
   }
 }
 
+namespace {
+
+/// One breadth-first growth of the metric-hexagonal lattice (placeInteriorNodes) over the
+/// band of the plane y ∈ [y0, y1): candidates outside it are dropped. The nodes it must keep
+/// clear of (the boundary nodes, a neighbour band's lattice) come first as context; the band's
+/// own nodes follow them. `margin`: how far beyond the band the context reaches; a candidate
+/// whose spacing box is taller than that could miss a node outside, and sets `tooTall` (the
+/// caller then grows the lattice in one piece). The whole plane with an infinite margin is the
+/// serial growth.
+class LatticeGrower {
+ public:
+  LatticeGrower(const DomainGeometry& geo, const MetricField& metric, const InteriorPlacementOptions& options, Vec2 lo,
+                Vec2 hi, double spacing, double y0, double y1, double margin, std::size_t capacity)
+      : geo_(geo),
+        metric_(metric),
+        o_(options),
+        y0_(y0),
+        y1_(y1),
+        margin_(margin),
+        constant_(metric.isConstant()),
+        m0_(metric.at(0.5 * (lo + hi))),
+        grid_(lo, hi, std::max(spacing, 1e-12 * (hi - lo).norm()), 1L << 23) {
+    grid_.clearIncremental(int(capacity));
+    for (int k = 0; k < 6; ++k)
+      dirs_.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
+  }
+  /// A node placed before (boundary, neighbour band): kept clear of, never moved.
+  int addContext(const Vec2& p, const Metric2& m) {
+    ++firstOwn_;
+    return add(p, m);
+  }
+  /// Takes point c (metric m) if it passes the tests: its id, else −1.
+  int take(const Vec2& c, const Metric2& m) { return acceptable(c, m) ? add(c, m) : -1; }
+  /// Takes point c (metric m) if it passes the tests, and grows the lattice from it.
+  void seed(const Vec2& c, const Metric2& m) {
+    const int id = take(c, m);
+    if (id < 0) return;
+    queue_.assign(1, id);
+    grow();
+  }
+  void seed(const Vec2& c) { seed(c, metricAt(c)); }
+  /// Grows from the given nodes (ids of this grower) first, then from what they add.
+  void growFrom(std::vector<int> ids) {
+    queue_ = std::move(ids);
+    grow();
+  }
+  /// The band's own nodes and their metrics (positions()[firstOwn() ...]).
+  const std::vector<Vec2>& positions() const { return pos_; }
+  const std::vector<Metric2>& metrics() const { return ms_; }
+  int firstOwn() const { return firstOwn_; }
+  bool tooTall() const { return tooTall_; }
+
+ private:
+  /// Located from the previous candidate's triangle (lattice candidates come in neighbouring
+  /// runs; MetricField::evaluate falls back on its own start when that one is far).
+  Metric2 metricAt(const Vec2& p) {
+    if (constant_) return m0_;
+    Metric2 m;
+    metric_.evaluate(std::span<const Vec2>(&p, 1), std::span<Metric2>(&m, 1), std::span<int>(&hint_, 1));
+    return m;
+  }
+  // A candidate c (metric m) is kept if it is far enough from every node, inside, and far
+  // enough from the walls; the cheapest test first (most lattice candidates land on a node
+  // placed before). Both searches scan the bounding box of the metric ball (reachBox), not
+  // the square of its long half-axis h1: on a boundary-layer metric (anisotropy up to 10⁴)
+  // the square held ~10³ cells and this test took 0.4 s of a 1.8 s remesh.
+  bool acceptable(const Vec2& c, const Metric2& m) {
+    if (!(c.y() >= y0_ && c.y() < y1_)) return false;
+    const double r2 = o_.minNodeDistance * o_.minNodeDistance;
+    const Vec2 reach = reachBox(m, o_.minNodeDistance);
+    if (reach.y() > margin_) tooTall_ = true;
+    const bool taken =
+        grid_.anyIncremental(c, reach.x(), reach.y(), [&](int q) { return m.squaredLength(pos_[q] - c) < r2; });
+    if (taken || !geo_.inside(c)) return false;
+    return geo_.metricDistanceToBoundary(c, m, reachBox(m, o_.minWallDistance)) >= o_.minWallDistance;
+  }
+  int add(const Vec2& c, const Metric2& m) {
+    const int id = int(pos_.size());
+    pos_.push_back(c);
+    ms_.push_back(m);
+    grid_.insert(id, c);
+    return id;
+  }
+  void grow() {
+    for (std::size_t head = 0; head < queue_.size(); ++head) {
+      const int p = queue_[head];
+      const Vec2 x = pos_[p];
+      const Metric2 m = ms_[p];
+      const MetricEigen e = m.eigen();
+      const Eigen::Matrix2d s = latticeMap(e, o_.orientation, o_.alignRatio);
+      for (const Vec2& d : dirs_) {
+        const Vec2 c = x + s * d;
+        if (acceptable(c, m)) queue_.push_back(add(c, metricAt(c)));
+      }
+    }
+  }
+
+  const DomainGeometry& geo_;
+  const MetricField& metric_;
+  const InteriorPlacementOptions& o_;
+  double y0_, y1_, margin_;
+  bool constant_;
+  Metric2 m0_;
+  BucketGrid grid_;
+  std::vector<Vec2> pos_, dirs_;
+  std::vector<Metric2> ms_;
+  std::vector<int> queue_;
+  int hint_ = -1, firstOwn_ = 0;
+  bool tooTall_ = false;
+};
+
+/// Probe points (lattice seeds for the parts the growth does not reach): a g × rows grid over
+/// the box, nearest to the box centre first.
+std::vector<Vec2> probePoints(const Vec2& lo, const Vec2& hi, int g, int rows) {
+  std::vector<Vec2> probes;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < g; ++x)
+      probes.push_back(lo + Vec2((x + 0.5) / g * (hi.x() - lo.x()), (y + 0.5) / rows * (hi.y() - lo.y())));
+  const Vec2 mid = 0.5 * (lo + hi);
+  std::stable_sort(probes.begin(), probes.end(),
+                   [&](const Vec2& a, const Vec2& b) { return (a - mid).squaredNorm() < (b - mid).squaredNorm(); });
+  return probes;
+}
+
+/// Bands of the banded growth: one per ~kBandNodes expected nodes, an even number from 4 to
+/// kMaxBands; 0 below 4 bands' worth of nodes, for warm starts (seeds go first, in order) and
+/// for fields that are not thread-safe (AnalyticMetricField): those grow in one piece.
+constexpr double kBandNodes = 40000;
+constexpr int kMaxBands = 32;
+int latticeBands(const MetricField& metric, const Vec2& lo, const Vec2& hi, double spacing, bool warm) {
+  const bool threadSafe = metric.isConstant() || dynamic_cast<const BackgroundMetricField*>(&metric) != nullptr;
+  const double expected = (hi - lo).prod() / std::max(spacing * spacing, 1e-300);
+  if (warm || !threadSafe || !(expected >= 4 * kBandNodes)) return 0;
+  return 2 * std::clamp(int(expected / (2 * kBandNodes)), 2, kMaxBands / 2);
+}
+
+/// The banded growth: the even bands in parallel (each kept clear of the boundary nodes), then
+/// the odd ones (each first grows from its two neighbours' nodes near it, so the lattice runs
+/// on across the band's edges, then from its probes). A band's nodes depend on its own inputs
+/// only: the same lattice for any thread count. Empty when some candidate's spacing box is
+/// taller than the margin (a quarter band): the caller grows in one piece.
+std::vector<LatticeGrower> growBands(const DomainGeometry& geo, const MetricField& metric, const NodeSet& nodes,
+                                     const std::vector<Metric2>& ms, double spacing,
+                                     const InteriorPlacementOptions& options, int bands) {
+  const auto box = geo.boundingBox();          // named, not a structured binding: the lambdas
+  const Vec2 lo = box.first, hi = box.second;  // below capture it (clang 14)
+  const double height = (hi.y() - lo.y()) / bands, margin = 0.25 * height;
+  const auto edge = [&](int b) { return b == bands ? std::numeric_limits<double>::infinity() : lo.y() + b * height; };
+  const std::vector<Vec2> probes = probePoints(lo, hi, 48, 6 * bands);
+  std::vector<LatticeGrower> g;
+  g.reserve(std::size_t(bands));
+  const double expected = (hi - lo).prod() / (spacing * spacing) / bands;
+  for (int b = 0; b < bands; ++b) {
+    const double y0 = b == 0 ? -std::numeric_limits<double>::infinity() : edge(b), y1 = edge(b + 1);
+    g.emplace_back(geo, metric, options, Vec2(lo.x(), std::max(lo.y(), edge(b) - margin)),
+                   Vec2(hi.x(), std::min(hi.y(), lo.y() + (b + 1) * height + margin)), spacing, y0, y1, margin,
+                   std::size_t(2 * expected));
+  }
+  // The bands' seeds snapped to one lattice, the unit hexagonal one mapped by the box centre's
+  // latticeMap: under a constant metric the fronts of two bands then meet on the same lattice,
+  // without a seam (seams cost ~2 node rows each, which the population control then refills).
+  const Vec2 mid = 0.5 * (lo + hi);
+  const Eigen::Matrix2d map = latticeMap(metric.at(mid).eigen(), options.orientation, options.alignRatio);
+  Eigen::Matrix2d inverse;
+  inverse << map(1, 1), -map(0, 1), -map(1, 0), map(0, 0);
+  inverse /= map(0, 0) * map(1, 1) - map(0, 1) * map(1, 0);
+  const double rowHeight = std::sqrt(3.0) / 2;
+  const auto snap = [&](const Vec2& p) {
+    const Vec2 q = inverse * (p - mid);
+    const double j = std::round(q.y() / rowHeight), i = std::round(q.x() - 0.5 * j);
+    return Vec2(mid + map * Vec2(i + 0.5 * j, rowHeight * j));
+  };
+  const auto near = [&](int b, const Vec2& p) {
+    return p.y() >= lo.y() + b * height - margin && p.y() < lo.y() + (b + 1) * height + margin;
+  };
+  ParallelFailure failure;
+  for (int parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int b = parity; b < bands; b += 2)
+      failure.run(b, [&] {
+        LatticeGrower& band = g[std::size_t(b)];
+        for (int i = 0; i < nodes.size(); ++i)
+          if (near(b, nodes.positions[i])) band.addContext(nodes.positions[i], ms[std::size_t(i)]);
+        std::vector<int> from;
+        for (const int nb : {b - 1, b + 1}) {
+          if (parity == 0 || nb < 0 || nb >= bands) continue;
+          const LatticeGrower& other = g[std::size_t(nb)];
+          for (std::size_t i = std::size_t(other.firstOwn()); i < other.positions().size(); ++i)
+            if (near(b, other.positions()[i]))
+              from.push_back(band.addContext(other.positions()[i], other.metrics()[i]));
+        }
+        band.growFrom(std::move(from));
+        for (const Vec2& probe : probes)
+          if (probe.y() >= edge(b) && probe.y() < edge(b + 1)) band.seed(snap(probe));
+      });
+    failure.rethrow();
+  }
+  for (const auto& band : g)
+    if (band.tooTall()) return {};
+  return g;
+}
+
+}  // namespace
+
 void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, NodeSet& nodes, double spacingHint,
                         const InteriorPlacementOptions& options, std::span<const Vec2> seeds) {
   const auto [lo, hi] = geo.boundingBox();
-  BucketGrid grid(lo, hi, std::max(spacingHint, 1e-12 * (hi - lo).norm()), 1L << 23);
-  grid.clearIncremental(nodes.size() * 4);
   const bool constant = metric.isConstant();
   const Metric2 m0 = metric.at(0.5 * (lo + hi));
   std::vector<Metric2> ms(nodes.size());
@@ -360,68 +563,23 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
     std::fill(ms.begin(), ms.end(), m0);
   else
     metric.evaluate(nodes.positions, ms);
-  for (int i = 0; i < nodes.size(); ++i) grid.insert(i, nodes.positions[i]);
-
-  // Located from the previous candidate's triangle (lattice candidates come in neighbouring
-  // runs; MetricField::evaluate falls back on its own start when that one is far).
-  int hint = -1;
-  auto metricAt = [&](const Vec2& p) {
-    if (constant) return m0;
-    Metric2 m;
-    metric.evaluate(std::span<const Vec2>(&p, 1), std::span<Metric2>(&m, 1), std::span<int>(&hint, 1));
-    return m;
-  };
-  // A candidate c (metric m, largest size h1 of m) is kept if it is far enough from every
-  // node, inside, and far enough from the walls; the cheapest test first (most lattice
-  // candidates land on a node placed before).
-  // Both searches scan the bounding box of the metric ball (reachBox), not the square of its
-  // long half-axis h1: on a boundary-layer metric (anisotropy up to 10⁴) the square held
-  // ~10³ cells and this test took 0.4 s of a 1.8 s remesh.
-  auto acceptable = [&](const Vec2& c, const Metric2& m) {
-    const double r2 = options.minNodeDistance * options.minNodeDistance;
-    const Vec2 reach = reachBox(m, options.minNodeDistance);
-    const bool taken = grid.anyIncremental(c, reach.x(), reach.y(),
-                                           [&](int q) { return m.squaredLength(nodes.positions[q] - c) < r2; });
-    if (taken || !geo.inside(c)) return false;
-    return geo.metricDistanceToBoundary(c, m, reachBox(m, options.minWallDistance)) >= options.minWallDistance;
-  };
-  auto add = [&](const Vec2& c, const Metric2& m) {
-    const int id = nodes.size();
-    nodes.positions.push_back(c);
-    nodes.kinds.push_back(NodeKind::Interior);
-    nodes.loops.push_back(-1);
-    nodes.arc.push_back(-1.0);
-    ms.push_back(m);
-    grid.insert(id, c);
-    return id;
-  };
-
-  // Probe points (seeds), nearest to the box centre first.
-  const int g = 48;
-  std::vector<Vec2> probes;
-  for (int y = 0; y < g; ++y)
-    for (int x = 0; x < g; ++x)
-      probes.push_back(lo + Vec2((x + 0.5) / g * (hi.x() - lo.x()), (y + 0.5) / g * (hi.y() - lo.y())));
-  const Vec2 mid = 0.5 * (lo + hi);
-  std::stable_sort(probes.begin(), probes.end(),
-                   [&](const Vec2& a, const Vec2& b) { return (a - mid).squaredNorm() < (b - mid).squaredNorm(); });
-
-  std::vector<Vec2> dirs;
-  for (int k = 0; k < 6; ++k) dirs.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
-  std::vector<int> queue;
-  auto grow = [&] {
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const int p = queue[head];
-      const Vec2 x = nodes.positions[p];
-      const Metric2 m = ms[p];
-      const MetricEigen e = m.eigen();
-      const Eigen::Matrix2d s = latticeMap(e, options.orientation, options.alignRatio);
-      for (const Vec2& d : dirs) {
-        const Vec2 c = x + s * d;
-        if (acceptable(c, m)) queue.push_back(add(c, metricAt(c)));
-      }
+  auto append = [&](const LatticeGrower& band) {
+    for (std::size_t i = std::size_t(band.firstOwn()); i < band.positions().size(); ++i) {
+      nodes.positions.push_back(band.positions()[i]);
+      nodes.kinds.push_back(NodeKind::Interior);
+      nodes.loops.push_back(-1);
+      nodes.arc.push_back(-1.0);
     }
   };
+  const int bands = latticeBands(metric, lo, hi, spacingHint, !seeds.empty());
+  if (bands > 0) {
+    const std::vector<LatticeGrower> g = growBands(geo, metric, nodes, ms, spacingHint, options, bands);
+    for (const auto& band : g) append(band);
+    if (!g.empty()) return;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  LatticeGrower one(geo, metric, options, lo, hi, spacingHint, -inf, inf, inf, nodes.size() * 4);
+  for (int i = 0; i < nodes.size(); ++i) one.addContext(nodes.positions[i], ms[std::size_t(i)]);
   // Warm start: the seeds that fit (same spacing rules as lattice points), then lattice
   // growth from each of them into the gaps they leave.
   if (!seeds.empty()) {
@@ -430,16 +588,13 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
       std::fill(sm.begin(), sm.end(), m0);
     else
       metric.evaluate(seeds, sm);
+    std::vector<int> taken;
     for (std::size_t k = 0; k < seeds.size(); ++k)
-      if (acceptable(seeds[k], sm[k])) queue.push_back(add(seeds[k], sm[k]));
-    grow();
+      if (const int id = one.take(seeds[k], sm[k]); id >= 0) taken.push_back(id);
+    one.growFrom(std::move(taken));
   }
-  for (const Vec2& probe : probes) {
-    const Metric2 mp = metricAt(probe);
-    if (!acceptable(probe, mp)) continue;
-    queue.assign(1, add(probe, mp));
-    grow();
-  }
+  for (const Vec2& probe : probePoints(lo, hi, 48, 48)) one.seed(probe);
+  append(one);
 }
 
 double metricArea(const Domain& domain, const DomainGeometry& geo, const MetricField& metric, int g) {

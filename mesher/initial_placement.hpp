@@ -21,6 +21,13 @@
 ///     With an orientation other than Axes the six directions are first turned in metric
 ///     space so that one row runs along the node's long or short eigenvector: the step is
 ///     M_p^{-1/2} Q(φ_p) d (latticeMap in the .cpp), still exact for a constant metric.
+///     Large problems (≥ 1.6·10⁵ expected nodes, no warm start, a constant or background
+///     field) grow in horizontal bands, ~4·10⁴ nodes each: the even bands in parallel, then
+///     the odd ones, each from its neighbours' nodes near it. A band's nodes depend on its own
+///     inputs only (the same lattice on any thread count), and its seeds are snapped to the
+///     lattice of the box centre's metric, so under a constant metric the bands' fronts meet
+///     without seams. A metric whose spacing box is taller than a quarter band grows in one
+///     piece.
 #include "ablmg/core/bucket_grid.hpp"
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/metric_field.hpp"

@@ -2,6 +2,7 @@
 // singular or non-SPD systems; CHOLMOD's OpenMP loops kept to the calling thread.
 #include "ablmg/fem/solve.hpp"
 
+#include "ablmg/core/domain.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/cholmod_threads.hpp"
 #include "ablmg/fem/error_norms.hpp"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <limits>
 #include <string>
 
 using namespace ablmg;
@@ -152,6 +154,24 @@ TEST(Assemble, ParallelElementLoopIsBitwiseSerial) {
   EXPECT_EQ(message(true, 1), serial);
 }
 
+// Above 20000 unknowns the pattern and the scatter are split by rows across the threads.
+TEST(Assemble, BitwiseSameOnOneAndTwoThreads) {
+  const Mesh2 m = unitSquareMesh(260, 0.2, 9);
+  const PoissonProblem p = makeProblem("tanhlayer").poisson();
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const LinearSystem one = assemble(m, p);
+  omp_set_num_threads(2);
+  const LinearSystem two = assemble(m, p);
+  omp_set_num_threads(saved);
+  ASSERT_GE(one.A.rows(), 20000);
+  ASSERT_EQ(one.A.nonZeros(), two.A.nonZeros());
+  EXPECT_TRUE(std::equal(one.A.outerIndexPtr(), one.A.outerIndexPtr() + one.A.rows() + 1, two.A.outerIndexPtr()));
+  EXPECT_TRUE(std::equal(one.A.innerIndexPtr(), one.A.innerIndexPtr() + one.A.nonZeros(), two.A.innerIndexPtr()));
+  EXPECT_TRUE(std::equal(one.A.valuePtr(), one.A.valuePtr() + one.A.nonZeros(), two.A.valuePtr()));
+  EXPECT_TRUE(one.b == two.b);
+}
+
 TEST(PoissonProblem, LambdasConvertToScalarData) {
   PoissonProblem p;
   p.f = [](double x, double y) { return x + y; };
@@ -191,4 +211,52 @@ TEST(Solve, CholmodScopeRunsRegionsSeriallyAndRestoresTheLevel) {
   }
   EXPECT_EQ(omp_get_max_active_levels(), saved);
   EXPECT_EQ(teamSize(), saved > 0 ? 4 : 1);
+}
+
+// Above splitMinUnknowns the two sides of the first cut are factorised apart
+// (fem/split_cholesky.hpp): the same solution as one factorisation, to rounding, with a
+// small residual, on a uniform grid (supernodal sides) and on a stretched one (simplicial).
+TEST(Solve, SplitFactorisationMatchesOneFactorisation) {
+  const Mesh2 meshes[] = {unitSquareMesh(150, 0.2, 4), structuredMesh(Domain::rectangle(0, 0, 1, 1), 12, 2000)};
+  for (const Mesh2& m : meshes) {
+    const LinearSystem sys = assemble(m, makeProblem("wavefront").poisson());
+    ASSERT_GE(sys.A.rows(), 20000);
+    SolveOptions whole;
+    whole.splitMinUnknowns = std::numeric_limits<int>::max();
+    SolveStats ss, sw;
+    const Eigen::VectorXd xs = solveSystem(sys, &ss), xw = solveSystem(sys, &sw, whole);
+    EXPECT_FALSE(xs == xw);  // the split path ran: other rounding
+    EXPECT_LT((xs - xw).norm(), 1e-11 * xw.norm());
+    EXPECT_LT(ss.residual, 1e-12);
+    EXPECT_NEAR(ss.factorNonZeros, sw.factorNonZeros, 0.05 * sw.factorNonZeros);
+  }
+}
+
+// Each side's factorisation and the separator's Schur complement reject a non-SPD matrix.
+TEST(Solve, SplitFactorisationRejectsNonSpdMatrices) {
+  LinearSystem sys = assemble(unitSquareMesh(150), makeProblem("smooth").poisson());
+  LinearSystem negated = sys;
+  negated.A = -sys.A;
+  EXPECT_THROW(solveSystem(negated), InputError);
+  // A negative diagonal entry on a separator unknown (the last of the order): an error, not
+  // a crash or a wrong answer.
+  std::vector<int> order = geometricNestedDissection(sys.A, sys.dofPoints);
+  sys.A.coeffRef(order.back(), order.back()) = -1e3;
+  try {
+    solveSystem(sys);
+    FAIL() << "indefinite matrix accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("positive definite"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Solve, SplitFactorisationBitwiseSameOnOneAndTwoThreads) {
+  const LinearSystem sys = assemble(unitSquareMesh(150, 0.2, 8), makeProblem("tanhlayer").poisson());
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Eigen::VectorXd one = solveSystem(sys);
+  omp_set_num_threads(2);
+  const Eigen::VectorXd two = solveSystem(sys);
+  omp_set_num_threads(saved);
+  EXPECT_TRUE(one == two);
 }
