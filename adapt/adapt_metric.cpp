@@ -41,9 +41,9 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
 
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
                                   const AdaptOptions& options, std::span<const double> densityScale) {
-  ABLMG_REQUIRE(densityScale.empty() || long(densityScale.size()) == long(mesh.numVertices()),
-                "metricFromRecovered: " << densityScale.size() << " density factors for " << mesh.numVertices()
-                                        << " vertices");
+  ABLMG_REQUIRE(
+      densityScale.empty() || long(densityScale.size()) == long(mesh.numVertices()),
+      "metricFromRecovered: " << densityScale.size() << " density factors for " << mesh.numVertices() << " vertices");
   Stopwatch watch;
   AdaptedMetric r;
   MetricOptions mo = options.metric;
@@ -84,6 +84,7 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     const double s = complexityForVertices(targetVertices) / metricComplexity(mesh, metric);
     for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
   }
+  if (mo.saddleShape > 0) r.rows = saddleLatticeRows(hessians, mo);
   r.secondsMetric = watch.seconds();
   return r;
 }

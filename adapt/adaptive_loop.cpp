@@ -256,6 +256,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.maxVertex = err.maxVertex;
 
     std::vector<Metric2> next;
+    std::vector<Vec2> nextRows;
     const bool reached =
         (options.stopL2 > 0 && err.l2 <= options.stopL2) || (options.stopH1 > 0 && err.h1 <= options.stopH1);
     report.stoppedEarly = reached && s + 1 < cycles;
@@ -278,6 +279,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
         if (target(s + 1) != target(s)) a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, scale);
       }
       next = std::move(a.metric);
+      nextRows = std::move(a.rows);
       row.tMetric = a.secondsMetric;
       row.gradationSweeps = a.gradation.sweeps;
     }
@@ -290,7 +292,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
       const std::vector<Vec2> seeds = interiorVertices(current.mesh);
       meshOptions.placement.warmStart.insert(meshOptions.placement.warmStart.end(), seeds.begin(), seeds.end());
     }
-    current = remesh(problem.domain, current.mesh, std::move(next), meshOptions);
+    current = remesh(problem.domain, current.mesh, std::move(next), meshOptions, std::move(nextRows));
     tMesh = watch.seconds();
   }
 

@@ -101,10 +101,16 @@ struct AdaptOptions {
   /// 2·10⁴ vertices, 2 passes). A blend only where H is definite (none on saddles and layers)
   /// keeps the steep front at 1.06 but puts the layer at 1.21: the layer needs it. With norm H1
   /// set, reset it for the norm's own shape (`ablmg adapt --norm h1` does).
+  ///
+  /// saddleShape 1 (metric_from_hessian.hpp: right isosceles triangles on near-harmonic saddles,
+  /// built by the mesher from the per-vertex lattice rows the loop hands over with the metric):
+  /// the corners' H1 0.96 → 0.91× FreeFem's, their L2 0.83–0.93 → 0.75–0.82×, the others within
+  /// ±0.03 (measurements there).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
     m.shapeBlend = 0.05;
+    m.saddleShape = 1;
     return m;
   }();
   /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.25: without it the metric of a
@@ -293,9 +299,13 @@ mesher::MeshResult uniformMesh(const AdaptProblem& problem, double targetVertice
 /// The metric for the next mesh and how it was made.
 struct AdaptedMetric {
   std::vector<Metric2> metric;  ///< one per vertex of the mesh it was computed on
-  GradationStats gradation;     ///< of limitGradation (all zero when options.hgrad ≤ 1)
-  double secondsRecover = 0;    ///< Hessian recovery (adaptMetric only; 0 in metricFromRecovered)
-  double secondsMetric = 0;     ///< metric from the Hessians, bounds, gradation and rescale
+  /// Lattice rows per vertex (saddleLatticeRows; empty when metric.saddleShape = 0), for
+  /// BackgroundMetricField's latticeRow (runAdaptiveLoop passes them to the mesher; a metric
+  /// written to a file does not carry them, so `ablmg remesh` of it has the plain lattice).
+  std::vector<Vec2> rows;
+  GradationStats gradation;   ///< of limitGradation (all zero when options.hgrad ≤ 1)
+  double secondsRecover = 0;  ///< Hessian recovery (adaptMetric only; 0 in metricFromRecovered)
+  double secondsMetric = 0;   ///< metric from the Hessians, bounds, gradation and rescale
 };
 
 /// M for the next mesh: recoverHessians → metricFromHessians(targetVertices) → gradation if

@@ -45,6 +45,11 @@ Hessian2 absoluteHessian(const Hessian2& h, double floor) {
   return es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
 }
 
+namespace {
+/// The saddle weight of MetricOptions::saddleShape: 0 up to −r = 0.55, 1 from 0.65 on.
+double saddleWeight(double ratio) { return std::clamp((-ratio - 0.55) / 0.1, 0.0, 1.0); }
+}  // namespace
+
 Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> hs;
   hs.computeDirect(h);
@@ -52,7 +57,7 @@ Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
   if (!(e[0] < 0 && e[1] > 0)) return s;       // definite or rank one: unchanged
   // r = −(smaller |λ|)/(larger |λ|) ∈ [−1, 0): −1 harmonic; the weight vanishes at rank one.
   const double r = -std::min(-e[0], e[1]) / std::max(-e[0], e[1]);
-  const double f = std::pow(3.0, 0.25 * sigma * std::clamp(-4 * r, 0.0, 1.0));  // √(aspect)
+  const double f = std::pow(3.0, 0.25 * sigma * saddleWeight(r));  // √(aspect)
   const Eigen::Vector2d pos = hs.eigenvectors().col(1);
   const double angle = std::atan2(pos.y(), pos.x()) + std::numbers::pi / 4;  // long axis
   Eigen::Matrix2d rot;
@@ -63,6 +68,26 @@ Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
   const Eigen::Matrix2d root =
       ss.eigenvectors() * ss.eigenvalues().cwiseSqrt().asDiagonal() * ss.eigenvectors().transpose();
   return root * c * root;
+}
+
+std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& o) {
+  std::vector<Vec2> rows(hessians.size(), Vec2::Zero());
+  if (o.saddleShape <= 0) return rows;
+  const double expo = 1 + o.shapeBlend.value_or(o.norm == ErrorNorm::H1 ? 1.0 : 0.0);
+  for (std::size_t v = 0; v < hessians.size(); ++v) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> hs;
+    hs.computeDirect(hessians[v]);
+    const Eigen::Vector2d e = hs.eigenvalues();  // ascending
+    if (!(e[0] < 0 && e[1] > 0)) continue;
+    const double r = -std::min(-e[0], e[1]) / std::max(-e[0], e[1]);
+    const double w = saddleWeight(r);
+    if (w == 0) continue;
+    const Vec2 pos = hs.eigenvectors().col(1), perp(-pos.y(), pos.x());
+    const Vec2 t = pos * std::pow(e[1], -0.5 * expo) + perp * std::pow(-e[0], -0.5 * expo);
+    const double alpha = std::atan2(t.y(), t.x());
+    rows[v] = w * Vec2(std::cos(2 * alpha), std::sin(2 * alpha));
+  }
+  return rows;
 }
 
 double complexityForVertices(double vertices) { return 0.5 * std::sqrt(3.0) * vertices; }

@@ -103,23 +103,22 @@ struct MetricOptions {
   ErrorNorm norm = ErrorNorm::L2;    ///< which error the metric is optimal for
   std::optional<double> shapeBlend;  ///< w ∈ [0, 1]: shape (|H|/√det|H|)^(1+w); empty = the norm's own (L2: 0, H1: 1)
   /// σ ∈ [0, 1] (0: off): on indefinite Hessians the shape S becomes S^½ C S^½ (det kept),
-  /// C of aspect 3^(σw/2) with its long axis at 45° to H's eigenvectors, w = min(1, −4r), r =
-  /// −(smaller |λ|)/(larger |λ|) (−1 on a harmonic saddle, 0 at rank one, where the weight
-  /// vanishes and the metric stays continuous). Why: for a saddle q = ½(x² − y²) the P1
-  /// triangle of least H1 interpolation error per area is right isosceles with its legs along
-  /// the eigenvectors, 0.866× an equilateral triangle's H1² (Mirebeau's shape analysis for
-  /// W^{1,p}, Numer. Math. 2012; scripts/saddle_triangle_shape.py); it is the metric-equilateral
-  /// triangle of C at σ = 1 in the lattice whose rows run along C's long axis
-  /// (mesher::LatticeOrientation::LongAxis), and costs +4.5 % at 5° misorientation, +44 % at
-  /// 30° (the short-axis lattice's). Measured on the L-shape (`ablmg adapt --problem lshape
-  /// --vertices 16000 --saddle-shape 1 --lattice long`): H1 −6.4 %, L2 −8.6 % at 1.6·10⁴
-  /// vertices (σ 0.5: −4.2 %, −6.8 %; with the short-axis lattice +7 % H1). Against FreeFem++
-  /// (examples/compare_freefem, N ≈ 3.2·10⁴, worst ratios over the cycles ≥ 5·10³), L2 / H1:
-  /// L-shape 0.85/0.96 → 0.78/0.90, 5π/4 0.83/0.95 → 0.79/0.90 (σ 0.5: 0.78/0.91), slit
-  /// 0.88/0.97 → 0.83/0.93 (σ 0.5). Off by default: the long-axis lattice costs the other
-  /// problems (σ 0.5: wave front 0.77/0.84 → 1.28/1.06, peak 0.66/0.91 → 0.96/1.04), and the
-  /// lattice orientation is one choice for the whole mesh (docs/limitations.md, "Corner
-  /// problems").
+  /// C of aspect 3^(σw/2) with its long axis at 45° to H's eigenvectors, w = the saddle weight,
+  /// 0 for −r ≤ 0.55 rising linearly to 1 at −r = 0.65, r = −(smaller |λ|)/(larger |λ|) (−1 on
+  /// a harmonic saddle). Why: for a saddle q = ½(x² − y²) the P1 triangle of least H1
+  /// interpolation error per area is right isosceles with its legs along the eigenvectors,
+  /// 0.866× an equilateral triangle's H1² (Mirebeau's shape analysis for W^{1,p}, Numer. Math.
+  /// 2012; scripts/saddle_triangle_shape.py); it is the metric-equilateral triangle of C at
+  /// σ = 1 whose base runs along C's long axis, and costs +4.5 % at 5° misorientation, +44 % at
+  /// 30°. The mesher builds that triangle from the lattice rows of saddleLatticeRows (below),
+  /// carried per vertex by the background field. For H = diag(1, −β) and the loop's shape
+  /// (exponent 1.05) the corrected triangle beats the plain one (rows along the short axis) for
+  /// β ≥ 0.6 (β = 0.7: −5 %, 0.8: −8 %, 1: −13 % H1²) and loses below (β = 0.5: +4 %, 0.25: +24 %),
+  /// hence the weight's narrow ramp at 0.6. Measured against FreeFem++ (examples/compare_freefem,
+  /// `--maxnv 4e4`, worst ratios over the cycles ≥ 5·10³, L2 / H1), σ = 0 → 1: L-shape
+  /// 0.86/0.96 → 0.75/0.91, 5π/4 0.83/0.96 → 0.76/0.91, 7π/4 0.86/0.96 → 0.75/0.91, slit
+  /// 0.93/0.97 → 0.82/0.91, peak 0.52/0.91 → 0.51/0.90; the others within ±0.03. Default 0 here,
+  /// 1 in the adaptive loop (AdaptOptions::metric).
   double saddleShape = 0;
   double hmin = 0;                                        ///< smallest size (coordinate units), ≥ 0
   double hmax = std::numeric_limits<double>::infinity();  ///< largest size, > hmin
@@ -133,6 +132,17 @@ struct MetricOptions {
 /// The saddle correction of MetricOptions::saddleShape applied to the shape `s` of Hessian `h`
 /// (unchanged where h is not indefinite); det S^½ C S^½ = det S.
 Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma);
+
+/// Per-vertex lattice rows for the saddle shape (MetricField::latticeRow; all zero when
+/// options.saddleShape = 0): where H is indefinite, w (cos 2α, sin 2α) with w the saddle weight
+/// above and t = (cos α, sin α) ∝ S^(−1/2) c1, c1 the long axis of C and S the
+/// norm's shape (eigenvalues |λ|^(1+shapeBlend) up to a factor: S^(−1/2) c1 ∝
+/// e₊ |λ₊|^(−(1+w')/2) + e⊥ |λ₋|^(−(1+w')/2), e₊ the eigenvector of the positive eigenvalue,
+/// e⊥ = e₊ turned by +90°). Why: M = S^½ C S^½ maps x to y = S^½ x, where C's metric-equilateral
+/// triangle with an edge along c1 is the right isosceles one; a lattice row along t is that
+/// edge in the plane (on a harmonic saddle S ∝ I and t is M's long axis, the long-axis lattice).
+/// Elsewhere 0: the mesher keeps its own orientation there.
+std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& options);
 
 /// Throws InputError naming the option and value if out of range.
 void validate(const MetricOptions& options);

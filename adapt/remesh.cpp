@@ -130,8 +130,8 @@ RemeshResult remesh(Mesh2 mesh, std::vector<Metric2> metric, const RemeshOptions
 }
 
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
-                          const mesher::MeshOptions& options) {
-  const BackgroundMetricField field(mesh, std::move(metric));
+                          const mesher::MeshOptions& options, std::vector<Vec2> rows) {
+  const BackgroundMetricField field(mesh, std::move(metric), std::move(rows));
   const bool subdomains =
       !mesh.interfaceEdges.empty() || std::adjacent_find(mesh.triangleRefs.begin(), mesh.triangleRefs.end(),
                                                          std::not_equal_to<>()) != mesh.triangleRefs.end();

@@ -162,8 +162,8 @@ mesher::MeshResult meshDomainWithRegions(const Domain& domain, const std::vector
 /// No clamp and no gradation; `mesh` is validated. Used by the adaptive loop. A mesh with
 /// subdomains (several triangle refs, or interface edges) is remeshed subdomain by subdomain
 /// (remeshSubdomains): refs, interfaces and slits kept, the boundary then taken from `mesh`
-/// (its polyline), not from `domain`.
+/// (its polyline), not from `domain`. `rows`: per-vertex lattice rows (BackgroundMetricField).
 mesher::MeshResult remesh(const Domain& domain, const Mesh2& mesh, std::vector<Metric2> metric,
-                          const mesher::MeshOptions& options = {});
+                          const mesher::MeshOptions& options = {}, std::vector<Vec2> rows = {});
 
 }  // namespace ablmg::adapt

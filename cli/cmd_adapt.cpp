@@ -342,8 +342,9 @@ each size below N1 (default 10000); --target-vertices: cycle k targets N_k verti
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
---saddle-shape S: on indefinite Hessians a shape of aspect up to 3^(S/2) at 45 degrees to the
-eigenvectors (off by default; pays with --lattice long only; adapt/metric_from_hessian.hpp).
+--saddle-shape S: on near-harmonic saddles (indefinite Hessians) a shape of aspect up to 3^(S/2)
+at 45 degrees to the eigenvectors, meshed as right isosceles triangles by lattice rows the
+metric carries per vertex (default 1; 0 = off; adapt/metric_from_hessian.hpp).
 --repeat-min-change C: a size's remaining passes are skipped after a cycle whose next metric
 differs from the one its mesh was built for by less than C (dM= in the cycle lines: the mean
 largest log change of a unit edge's length; 0 = run every pass; adapt/adaptive_loop.hpp).

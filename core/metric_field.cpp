@@ -25,7 +25,30 @@ void MetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<doubl
   for (std::size_t i = 0; i < points.size(); ++i) out[i] = std::sqrt(ms[i].det());
 }
 
+Vec2 MetricField::latticeRow(const Vec2&, int&) const { return Vec2::Zero(); }
+
 // ---------------------------------------------------------------- background mesh
+
+BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, std::vector<Vec2> rows,
+                                             MeshCheck check)
+    : BackgroundMetricField(std::move(mesh), std::move(metrics), check) {
+  ABLMG_REQUIRE(
+      rows.empty() || long(rows.size()) == long(mesh_.numVertices()),
+      "background metric: " << rows.size() << " lattice rows for a mesh of " << mesh_.numVertices() << " vertices");
+  for (std::size_t v = 0; v < rows.size(); ++v)
+    ABLMG_REQUIRE(rows[v].allFinite() && rows[v].norm() <= 1 + 1e-12,
+                  "background metric: lattice row " << v << " (" << rows[v].x() << ", " << rows[v].y()
+                                                    << ") must be finite with norm <= 1");
+  rows_ = std::move(rows);
+}
+
+Vec2 BackgroundMetricField::latticeRow(const Vec2& p, int& hint) const {
+  if (rows_.empty()) return Vec2::Zero();
+  const auto loc = locator_->locate(p, locator_->startNear(p, hint));
+  hint = loc.triangle;
+  const auto& tr = mesh_.triangles[loc.triangle];
+  return loc.bary[0] * rows_[tr[0]] + loc.bary[1] * rows_[tr[1]] + loc.bary[2] * rows_[tr[2]];
+}
 
 BackgroundMetricField::BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check)
     : mesh_(std::move(mesh)), metrics_(std::move(metrics)) {

@@ -43,6 +43,13 @@ class MetricField {
   virtual void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const;
   /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
   virtual bool isConstant() const { return false; }
+  /// True if the field carries lattice rows (latticeRow below).
+  virtual bool hasLatticeRows() const { return false; }
+  /// The lattice row hint at p: w (cos 2α, sin 2α), w ∈ [0, 1] the weight with which the
+  /// mesher's initial lattice runs a row along the physical direction (cos α, sin α) (α mod π:
+  /// the doubled angle makes the hint interpolable), 0 = no preference (the mesher's own
+  /// orientation, mesher::LatticeOrientation). `hint` as in evaluate(). Default: 0.
+  virtual Vec2 latticeRow(const Vec2& p, int& hint) const;
 };
 
 class ConstantMetricField final : public MetricField {
@@ -79,6 +86,12 @@ class BackgroundMetricField final : public MetricField {
   enum class MeshCheck { Validate, AlreadyValidated };
   /// mesh must be valid; metrics.size() == mesh.numVertices(). Copies both.
   BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, MeshCheck check = MeshCheck::Validate);
+  /// With per-vertex lattice rows (latticeRow; rows.size() == mesh.numVertices(), each of norm
+  /// ≤ 1, or empty = none), interpolated linearly with the barycentric weights.
+  BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, std::vector<Vec2> rows,
+                        MeshCheck check = MeshCheck::Validate);
+  bool hasLatticeRows() const override { return !rows_.empty(); }
+  Vec2 latticeRow(const Vec2& p, int& hint) const override;
   Metric2 at(const Vec2& p) const override;
   void evaluate(std::span<const Vec2> points, std::span<Metric2> out) const override;
   /// Hint = triangle index; points are located in parallel (OpenMP), each from its own hint
@@ -98,6 +111,7 @@ class BackgroundMetricField final : public MetricField {
   Mesh2 mesh_;
   std::vector<Metric2> metrics_;
   std::vector<Metric2> logs_;  ///< log M per vertex, precomputed
+  std::vector<Vec2> rows_;     ///< lattice row per vertex (empty: none)
   std::unique_ptr<PointLocator> locator_;
 };
 

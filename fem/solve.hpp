@@ -1,7 +1,10 @@
 #pragma once
-/// Solving the assembled P1 Poisson system with CHOLMOD's Cholesky factorisation
-/// (Eigen::CholmodSupernodalLLT, with CHOLMOD choosing the simplicial path when the fronts are
-/// too small for BLAS to pay: fem/solve.cpp, configureFactorisation).
+/// Solving the assembled P1 Poisson system with CHOLMOD's Cholesky factorisation (supernodal,
+/// or simplicial when the fronts are too small for BLAS to pay: fem/cholmod_threads.hpp,
+/// configureFactorisation). From SolveOptions::splitMinUnknowns (20000) unknowns the two sides
+/// of the ordering's first cut are factorised apart, on two threads, and joined through the
+/// separator's Schur complement (fem/split_cholesky.hpp); below, one CHOLMOD factorisation
+/// (Eigen::CholmodSupernodalLLT).
 ///
 /// Fill-reducing ordering: by default our geometric nested dissection (fem/ordering.hpp) —
 /// the unknowns are permuted before CHOLMOD sees them and CHOLMOD keeps that order — because
@@ -9,13 +12,14 @@
 /// on this 2-core machine, uniform mesh, 10⁶ unknowns, OpenBLAS: ≈ 0.5 s ordering + 3 s
 /// factorisation, against ≈ 7 s + 2.8 s with CHOLMOD's METIS and 0.6 s + 4.1 s with AMD.
 /// Its cuts are chosen by separator size in the graph, so the flops follow N and not the
-/// grading (≈ 10⁵ unknowns: 0.58, 0.97 and 0.05 GFlop on the uniform, wave-front and tanh-layer
+/// grading (≈ 10⁵ unknowns: 0.37, 1.03 and 0.05 GFlop on the uniform, wave-front and tanh-layer
 /// meshes, where the longer-axis rule took 0.57, 1.69 and 504; bench/bench_solve_graded.cpp).
 /// (CHOLMOD's supernodal kernels need an optimised BLAS: with Debian's reference BLAS the
 /// factorisation is ≈ 4× slower. Install libopenblas0-pthread.)
 ///
 /// Determinism: the same system gives the same bits for any OMP_NUM_THREADS /
-/// OPENBLAS_NUM_THREADS — our OpenMP loops sum in a fixed order, and the factorisation always
+/// OPENBLAS_NUM_THREADS — our OpenMP loops sum in a fixed order, the split factorisation does
+/// the same operations on one thread or two, and every factorisation
 /// runs OpenBLAS with 1 thread (its threaded dpotrf rounds differently per thread count, and
 /// its thread pool spins on each of the supernodal factorisation's many small calls: on a
 /// loaded machine that made the solve 10–100× slower; fem/cholmod_threads.hpp, fixBlasThreads).

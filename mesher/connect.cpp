@@ -333,18 +333,28 @@ std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, c
         links.liveRing(p, ring);
         const int m = int(ring.size());
         if (m < 2) return;
+        const std::size_t first = out.size();
         for (int k = 0; k < m; ++k) {
           const int s = ring[k], t = ring[(k + 1) % m];
           if (s < p || t < p || s == t || !links.linked(s, t)) continue;
           if (orient2d(pos[p], pos[s], pos[t]) <= 0) continue;
           if (follows(s, t, p) && follows(t, p, s)) out.push_back({p, s, t});
         }
+        std::sort(out.begin() + std::ptrdiff_t(first), out.end());  // p's few, in order
       });
   }
   failure.rethrow();
+  // schedule(static) hands the threads consecutive ranges of p in thread order: the
+  // concatenation is sorted already (checked; sorted in full otherwise).
   std::vector<std::array<int, 3>> consistent;
-  for (auto& v : perThread) consistent.insert(consistent.end(), v.begin(), v.end());
-  std::sort(consistent.begin(), consistent.end());
+  std::size_t total = 0;
+  for (const auto& v : perThread) total += v.size();
+  consistent.reserve(total);
+  for (auto& v : perThread) {
+    consistent.insert(consistent.end(), v.begin(), v.end());
+    v = {};
+  }
+  if (!std::is_sorted(consistent.begin(), consistent.end())) std::sort(consistent.begin(), consistent.end());
   return consistent;
 }
 
@@ -713,7 +723,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
   const Stopwatch validateWatch;
   Mesh2 un;
   un.vertices = pos;
-  un.triangles = consistent;
+  un.triangles = std::move(consistent);  // given back below when the union needs repair
   un.boundaryEdges = placement.boundaryEdges;
   const double area = areaToCover(placement, domain);
   const bool ok = un.validate(area, 1e-9).ok;
@@ -725,6 +735,7 @@ ConnectResult connect(const PlacementResult& placement, const Domain& domain, co
     std::iota(result.nodeOfVertex.begin(), result.nodeOfVertex.end(), 0);
     return result;
   }
+  consistent = std::move(un.triangles);
   const Stopwatch repairWatch;
   const bool repaired = options.localRepair && repairLocally(placement, consistent, area, result);
   st.secondsRepair += repairWatch.seconds();

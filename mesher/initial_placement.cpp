@@ -44,7 +44,14 @@ bool crossesHalfOpen(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b)
 /// of the x axis), φ = θ puts a row along e1 (the long size), φ = θ + π/2 along e2. A hexagonal
 /// lattice repeats every 60°, so φ is blended on the 6φ circle from 0 (isotropic, where θ is
 /// noise) to the eigenframe (ratio h1/h2 ≥ alignRatio); θ's own period π is a multiple of 60°.
-Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation, double alignRatio) {
+/// A field's lattice row w (cos 2α, sin 2α) (MetricField::latticeRow) with w ≥ ½ replaces φ by
+/// φ_t = arg(M^{1/2} t), t = (cos α, sin α) (L maps the row direction (1, 0) onto t). A switch,
+/// not a blend: a lattice turned part of the way is worse than either end (on saddles of ratio
+/// 0.65–0.75, shape and rows both ramped with the weight had 9–14 % more H1² than the better
+/// end; scripts/saddle_triangle_shape.py), so the rows meet in a seam where the interpolated
+/// weight crosses ½.
+Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation, double alignRatio,
+                           const Vec2& row = Vec2::Zero()) {
   double phi = 0;
   if (orientation != LatticeOrientation::Axes) {
     const double target = e.theta + (orientation == LatticeOrientation::ShortAxis ? std::numbers::pi / 2 : 0.0);
@@ -52,6 +59,15 @@ Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation,
     phi = std::atan2(w * std::sin(6 * target), (1 - w) + w * std::cos(6 * target)) / 6;
   }
   const double c = std::cos(e.theta), s = std::sin(e.theta);
+  if (row.norm() >= 0.5) {
+    const double alpha = 0.5 * std::atan2(row.y(), row.x());
+    // M^{1/2} t in the eigenframe: components (t·e1 / h1, t·e2 / h2), then back by R(θ).
+    const double t1 = c * std::cos(alpha) + s * std::sin(alpha), t2 = -s * std::cos(alpha) + c * std::sin(alpha);
+    const double phiRow = e.theta + std::atan2(t2 / e.h2, t1 / e.h1);
+    const double sixty = std::numbers::pi / 3;
+    const double diff = phiRow - phi - sixty * std::round((phiRow - phi) / sixty);
+    phi += diff;
+  }
   const double cp = std::cos(phi - e.theta), sp = std::sin(phi - e.theta);
   Eigen::Matrix2d r, q;
   r << c, -s, s, c;
@@ -369,9 +385,18 @@ class LatticeGrower {
         y1_(y1),
         margin_(margin),
         constant_(metric.isConstant()),
+        rows_(!constant_ && metric.hasLatticeRows()),
         m0_(metric.at(0.5 * (lo + hi))),
         grid_(lo, hi, std::max(spacing, 1e-12 * (hi - lo).norm()), 1L << 23) {
+    // Reserved above glibc's mmap threshold (4 MB, fixed by the ablmg program) even for int
+    // arrays: mapped, untouched pages cost no memory, and released arrays go back to the
+    // system. Grown below it, the bands' arrays left heap holes that stayed resident (the
+    // 10⁶-triangle refinement's peak: 200–204 MB against 184–186 MB grown in one piece).
+    capacity = std::max(capacity, std::size_t(4 << 20) / sizeof(int) + 1);
     grid_.clearIncremental(int(capacity));
+    pos_.reserve(capacity);
+    ms_.reserve(capacity);
+    queue_.reserve(capacity);
     for (int k = 0; k < 6; ++k)
       dirs_.emplace_back(std::cos(k * std::numbers::pi / 3), std::sin(k * std::numbers::pi / 3));
   }
@@ -400,6 +425,13 @@ class LatticeGrower {
   const std::vector<Metric2>& metrics() const { return ms_; }
   int firstOwn() const { return firstOwn_; }
   bool tooTall() const { return tooTall_; }
+  /// Frees the nodes, the grid and the queue (after the caller has taken the nodes).
+  void release() {
+    pos_ = {};
+    ms_ = {};
+    queue_ = {};
+    grid_ = BucketGrid();
+  }
 
  private:
   /// Located from the previous candidate's triangle (lattice candidates come in neighbouring
@@ -438,7 +470,8 @@ class LatticeGrower {
       const Vec2 x = pos_[p];
       const Metric2 m = ms_[p];
       const MetricEigen e = m.eigen();
-      const Eigen::Matrix2d s = latticeMap(e, o_.orientation, o_.alignRatio);
+      const Eigen::Matrix2d s =
+          latticeMap(e, o_.orientation, o_.alignRatio, rows_ ? metric_.latticeRow(x, rowHint_) : Vec2::Zero());
       for (const Vec2& d : dirs_) {
         const Vec2 c = x + s * d;
         if (acceptable(c, m)) queue_.push_back(add(c, metricAt(c)));
@@ -450,13 +483,13 @@ class LatticeGrower {
   const MetricField& metric_;
   const InteriorPlacementOptions& o_;
   double y0_, y1_, margin_;
-  bool constant_;
+  bool constant_, rows_;
   Metric2 m0_;
   BucketGrid grid_;
   std::vector<Vec2> pos_, dirs_;
   std::vector<Metric2> ms_;
   std::vector<int> queue_;
-  int hint_ = -1, firstOwn_ = 0;
+  int hint_ = -1, rowHint_ = -1, firstOwn_ = 0;
   bool tooTall_ = false;
 };
 
@@ -573,8 +606,18 @@ void placeInteriorNodes(const DomainGeometry& geo, const MetricField& metric, No
   };
   const int bands = latticeBands(metric, lo, hi, spacingHint, !seeds.empty());
   if (bands > 0) {
-    const std::vector<LatticeGrower> g = growBands(geo, metric, nodes, ms, spacingHint, options, bands);
-    for (const auto& band : g) append(band);
+    std::vector<LatticeGrower> g = growBands(geo, metric, nodes, ms, spacingHint, options, bands);
+    std::size_t total = nodes.positions.size();
+    for (const auto& band : g) total += band.positions().size() - std::size_t(band.firstOwn());
+    nodes.positions.reserve(total);
+    nodes.kinds.reserve(total);
+    nodes.loops.reserve(total);
+    nodes.arc.reserve(total);
+    for (auto& band : g) {
+      append(band);
+      band.release();
+    }
+
     if (!g.empty()) return;
   }
   const double inf = std::numeric_limits<double>::infinity();

@@ -41,7 +41,9 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
   method             'lsq' (quadratic least-squares fit) or 'double' (recovered gradient,
                      recovered again)
 Returns one metric per vertex of the given mesh, in its vertex order: pass it with the same
-points/triangles to remesh. Raises ValueError for an invalid mesh, a NaN in u, a bad option.
+points/triangles to remesh. One default differs from the loop's: no saddle shape (`ablmg adapt
+--saddle-shape 0`), which pays only with the per-vertex lattice rows the loop hands to its
+mesher and remesh does not take. Raises ValueError for an invalid mesh, a NaN in u, a bad option.
 The GIL is released while computing.)";
 
 const char* kQualityDoc = R"(quality(points, triangles, metric=None, *, e=0.05) -> dict
@@ -92,6 +94,7 @@ void bindAdapt(py::module_& m) {
         o.metric.hmax = hmax;
         o.metric.maxAnisotropy = maxAnisotropy;
         o.hgrad = hgrad;
+        o.metric.saddleShape = 0;  // needs the per-vertex lattice rows, which remesh does not take
         adapt::validate(o);
         std::vector<Metric2> metric;
         {

@@ -69,3 +69,26 @@ for a in [1.0, 1.2, 1.367, 1.5, 1.7]:
 print("--- long-axis lattice, aspect sqrt3 at 45 degrees (the right isosceles one): error vs misorientation")
 for d in [0, 5, 10, 20, 30]:
     print(f"{d} degrees: {err(lattice_tri(np.sqrt(3), np.pi / 4, np.pi / 4 + np.radians(d)), H):.4f}")
+# Saddles that are not harmonic, H = diag(1, -beta), with the loop's shape S (eigenvalues
+# |lambda|^1.05, det 1): the plain metric S with rows along its short axis (g = 0, w = 0) against
+# the saddle correction S^(1/2) C S^(1/2) (C of aspect 3^(g/2) at 45 degrees) with its rows turned
+# by the fraction w towards t = S^(-1/2) c1 (adapt/metric_from_hessian.hpp, saddleLatticeRows;
+# w = 1: the mesher's switch). Why the saddle weight ramps over ratios 0.55-0.65 only and the
+# rows switch rather than turn: the correction pays from beta ~ 0.6 on, and half-way is worse
+# than either end.
+print("--- non-harmonic saddles: plain (g=0,w=0), corrected (g=1,w=1), both ramped over 0.6-0.8")
+def rot(a): return np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])
+def rows_tri(M, t, w):
+    lam, V = np.linalg.eigh(M); Mh = V @ np.diag(np.sqrt(lam)) @ V.T
+    ps = np.arctan2(*(Mh @ V[:, 1])[::-1]); pr = np.arctan2(*(Mh @ t)[::-1])
+    d = pr - ps; d -= np.pi / 3 * np.round(d / (np.pi / 3))
+    T = (eq @ rot(ps + w * d).T) @ np.linalg.inv(Mh).T
+    return T * np.sqrt((np.sqrt(3) / 4) / (abs(np.cross(T[1] - T[0], T[2] - T[0])) / 2))
+for beta in [1, 0.8, 0.75, 0.7, 0.65, 0.6, 0.5, 0.25]:
+    H = np.diag([1., -beta]); S = np.diag([1., beta**1.05]); S /= np.sqrt(np.linalg.det(S)); Sh = np.sqrt(S)
+    t = np.array([1 / Sh[0, 0], 1 / Sh[1, 1]]); t /= np.linalg.norm(t)
+    def corrected(g, w):
+        f = 3**(0.25 * g); C = rot(np.pi / 4) @ np.diag([1 / f**2, f**2]) @ rot(np.pi / 4).T
+        return err(rows_tri(Sh @ C @ Sh, t, w), H)
+    ramp = np.clip((beta - 0.6) / 0.2, 0, 1)
+    print(f"beta {beta}: plain {corrected(0, 0):.4f} corrected {corrected(1, 1):.4f} ramped {corrected(ramp, ramp):.4f}")

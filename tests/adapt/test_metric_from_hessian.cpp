@@ -273,11 +273,58 @@ TEST(MetricFromHessian, SaddleShapeMakesTheAlignedRightIsoscelesTriangleEquilate
   EXPECT_NEAR((saddleShaped(h, shape, 0) - shape).norm(), 0, 1e-12);
   const Hessian2 definite = r * Eigen::Vector2d(2, 1).asDiagonal() * r.transpose();
   EXPECT_NEAR((saddleShaped(definite, shape, 1) - shape).norm(), 0, 1e-12);
-  // Half the weight at r = −1/8 (σ = 1): aspect 3^(1/4).
-  const Hessian2 weak = r * Eigen::Vector2d(1, -0.125).asDiagonal() * r.transpose();
+  // Half the weight at r = −0.6 (σ = 1): aspect 3^(1/4); none at r = −0.5.
+  const Hessian2 weak = r * Eigen::Vector2d(1, -0.6).asDiagonal() * r.transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> ew(saddleShaped(weak, shape, 1));
-  EXPECT_NEAR(ew.eigenvalues()[1] / ew.eigenvalues()[0], std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(ew.eigenvalues()[1] / ew.eigenvalues()[0], std::sqrt(3.0), 1e-9);
+  const Hessian2 weaker = r * Eigen::Vector2d(1, -0.5).asDiagonal() * r.transpose();
+  EXPECT_NEAR((saddleShaped(weaker, shape, 1) - shape).norm(), 0, 1e-12);
   MetricOptions o;
   o.saddleShape = 1.5;
   EXPECT_THROW(validate(o), InputError);
+}
+
+TEST(MetricFromHessian, SaddleLatticeRowsMakeTheShapedTriangleRightIsosceles) {
+  // H = R diag(1, −β) Rᵀ, β = 0.8 (a saddle, not harmonic) and the loop's shape exponent 1.05:
+  // the metric-equilateral triangle of M = S^½ C S^½ with its base along the row t is, in
+  // y = S^½ x, right isosceles with its right angle at the apex and its legs along H's
+  // eigenvectors (the P1 triangle of least H1 error for the harmonic saddle of y). Row weight
+  // 1 there, 0 on a definite Hessian, on a saddle with |r| < 0.55, or with saddleShape 0.
+  const double t = 0.3, c = std::cos(t), s = std::sin(t), beta = 0.8, expo = 1.05;
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  const Hessian2 h = r * Eigen::Vector2d(1, -beta).asDiagonal() * r.transpose();
+  const Hessian2 shape = r * Eigen::Vector2d(1, std::pow(beta, expo)).asDiagonal() * r.transpose();
+  MetricOptions o;
+  o.shapeBlend = expo - 1;
+  o.saddleShape = 1;
+  const Hessian2 definite = r * Eigen::Vector2d(2, 1).asDiagonal() * r.transpose();
+  const Hessian2 flat = r * Eigen::Vector2d(1, -0.5).asDiagonal() * r.transpose();
+  const std::vector<Hessian2> hs{h, definite, flat};
+  const auto rows = saddleLatticeRows(hs, o);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_NEAR(rows[0].norm(), 1, 1e-12);
+  EXPECT_EQ(rows[1].norm(), 0);
+  EXPECT_EQ(rows[2].norm(), 0);
+  o.saddleShape = 0;
+  EXPECT_EQ(saddleLatticeRows(hs, o)[0].norm(), 0);
+
+  const double alpha = 0.5 * std::atan2(rows[0].y(), rows[0].x());
+  const Eigen::Vector2d dir(std::cos(alpha), std::sin(alpha));
+  const Hessian2 m = saddleShaped(h, shape, 1);
+  const auto root = [](const Eigen::Matrix2d& a, double power) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(a);
+    return Eigen::Matrix2d(es.eigenvectors() * es.eigenvalues().array().pow(power).matrix().asDiagonal() *
+                           es.eigenvectors().transpose());
+  };
+  // Base 0 → b (b along t), apex at b/2 + (√3/2) × b turned by 90° in metric space.
+  const Eigen::Vector2d base = root(m, 0.5) * dir;
+  const Eigen::Vector2d apexMetric = 0.5 * base + 0.5 * std::sqrt(3.0) * Eigen::Vector2d(-base.y(), base.x());
+  const Eigen::Matrix2d toY = root(shape, 0.5) * root(m, -0.5);  // metric space → y = S^½ x
+  const Eigen::Vector2d b = toY * base, p = toY * apexMetric;
+  const Eigen::Vector2d leg1 = p, leg2 = p - b;
+  EXPECT_NEAR(leg1.dot(leg2) / leg1.squaredNorm(), 0, 1e-9);      // right angle at the apex
+  EXPECT_NEAR(leg2.squaredNorm() / leg1.squaredNorm(), 1, 1e-9);  // isosceles
+  const double along = std::max(std::abs(leg1.normalized().dot(r.col(0))), std::abs(leg1.normalized().dot(r.col(1))));
+  EXPECT_NEAR(along, 1, 1e-9);  // legs along H's eigenvectors
 }

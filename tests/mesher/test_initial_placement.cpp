@@ -227,10 +227,12 @@ TEST(InitialPlacement, ConstantMetricLatticeIsExactlyHexagonal) {
 namespace {
 /// Angles (mod 60°) in metric space of the edges from the first interior node to its lattice
 /// neighbours (metric distance 1): the lattice rows' directions.
-std::vector<double> rowAnglesMod60(const Metric2& metric, LatticeOrientation orientation) {
+std::vector<double> rowAnglesMod60(const Metric2& metric, LatticeOrientation orientation,
+                                   const MetricField* field = nullptr) {
   const Domain d = Domain::rectangle(0, 0, 3, 2);
   const DomainGeometry geo(d);
-  ConstantMetricField m(metric);
+  ConstantMetricField constant(metric);
+  const MetricField& m = field ? *field : constant;
   NodeSet nodes;
   std::vector<double> arc;
   placeBoundaryNodes(geo, m, nodes, arc);
@@ -281,6 +283,44 @@ TEST(InitialPlacement, LatticeOrientationTurnsTheRowsInMetricSpace) {
   }
   EXPECT_EQ(parseLatticeOrientation("short"), LatticeOrientation::ShortAxis);
   EXPECT_THROW(parseLatticeOrientation("diagonal"), InputError);
+}
+
+TEST(InitialPlacement, FieldLatticeRowsTurnTheRowsOntoTheirDirection) {
+  // A background field of one anisotropic tensor that carries a lattice row t (at angle α,
+  // neither eigenvector): with weight 1 one row of the lattice runs along t in the plane, i.e.
+  // along M^{1/2} t in metric space, whatever the mesher's own orientation; a weight below ½
+  // leaves the mesher's orientation (rows switch, they do not turn halfway).
+  const double theta = 0.3, alpha = 1.1;
+  const Metric2 aniso = Metric2::fromSizes(0.2, 0.05, theta);
+  Mesh2 square;
+  square.vertices = {{-1, -1}, {4, -1}, {4, 3}, {-1, 3}};
+  square.triangles = {{0, 1, 2}, {0, 2, 3}};
+  square.boundaryEdges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const Vec2 t(std::cos(alpha), std::sin(alpha));
+  const MetricEigen e = aniso.eigen();
+  const double c = std::cos(e.theta), s = std::sin(e.theta);
+  const double a = (c * t.x() + s * t.y()) / e.h1, b = (-s * t.x() + c * t.y()) / e.h2;
+  const double rowAngle =
+      std::fmod(std::atan2(s * a + c * b, c * a - s * b) + 4 * std::numbers::pi, std::numbers::pi / 3);
+  const double shortAxis = std::fmod(theta + std::numbers::pi / 2, std::numbers::pi / 3);
+  ASSERT_GT(distMod60(rowAngle, shortAxis), 0.1);
+  ASSERT_GT(distMod60(rowAngle, 0), 0.1);
+  for (const double weight : {1.0, 0.4}) {
+    const Vec2 row = weight * Vec2(std::cos(2 * alpha), std::sin(2 * alpha));
+    const BackgroundMetricField field(square, std::vector<Metric2>(4, aniso), std::vector<Vec2>(4, row));
+    ASSERT_TRUE(field.hasLatticeRows());
+    int hint = -1;
+    EXPECT_NEAR((field.latticeRow({1.5, 1}, hint) - row).norm(), 0, 1e-12);
+    for (const auto orientation : {LatticeOrientation::Axes, LatticeOrientation::ShortAxis}) {
+      const double expected = weight >= 0.5 ? rowAngle : orientation == LatticeOrientation::Axes ? 0.0 : shortAxis;
+      const auto angles = rowAnglesMod60(aniso, orientation, &field);
+      ASSERT_EQ(angles.size(), 6u) << latticeOrientationName(orientation) << " weight " << weight;
+      for (double x : angles) EXPECT_LT(distMod60(x, expected), 1e-9) << latticeOrientationName(orientation);
+    }
+  }
+  const std::vector<Metric2> four(4, aniso);
+  EXPECT_THROW(BackgroundMetricField(square, four, std::vector<Vec2>(4, Vec2(1, 1))), InputError);  // |row| > 1
+  EXPECT_THROW(BackgroundMetricField(square, four, std::vector<Vec2>(3, Vec2(0, 0))), InputError);
 }
 
 TEST(InitialPlacement, PredictedCountEulerCorrection) {
