@@ -191,6 +191,38 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
   return u.squaredNorm() < v.squaredNorm();
 }
 
+/// Symmetric CSR rows of the links (i, j) (each listed once), each row sorted by id with its
+/// counter-clockwise order.
+Links linksFromPairs(std::span<const Vec2> pos, std::vector<std::pair<int, int>> pairs, int threads) {
+  const int n = int(pos.size());
+  Links links;
+  links.offsets.assign(n + 1, 0);
+  for (const auto& [i, j] : pairs) {
+    ++links.offsets[i + 1];
+    ++links.offsets[j + 1];
+  }
+  for (int i = 0; i < n; ++i) links.offsets[i + 1] += links.offsets[i];
+  links.ids.resize(links.offsets[n]);
+  links.ccw.resize(links.offsets[n]);
+  {
+    std::vector<int> fill(links.offsets.begin(), links.offsets.end() - 1);
+    for (const auto& [i, j] : pairs) {
+      links.ids[std::size_t(fill[std::size_t(i)]++)] = j;
+      links.ids[std::size_t(fill[std::size_t(j)]++)] = i;
+    }
+  }
+  pairs = {};
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
+    std::sort(links.ids.begin() + b, links.ids.begin() + b + m);
+    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
+    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
+              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
+  }
+  return links;
+}
+
 /// Step 1 (paper §4.1): the links, adjacency pairs of used nodes inside the domain (not
 /// leaving a boundary node's angle, not crossing a boundary edge), plus every boundary edge;
 /// rows sorted by id, with their counter-clockwise order.
@@ -211,49 +243,54 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
     return turn > 0 ? (left1 && left2) : turn < 0 ? (left1 || left2) : left1;
   };
   const auto& adj = placement.adjacency;
-  std::vector<std::vector<int>> rowsOf(n);
+  // The links (i, j), j > i, decided in parallel: schedule(static) hands each thread one range
+  // of i, in thread order, so the threads' lists concatenated run in i order.
+  std::vector<std::vector<std::pair<int, int>>> perThread(std::size_t(std::max(threads, 1)));
   ParallelFailure failure;  // push_back may throw: rethrown after the region
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int i = 0; i < n; ++i)
-    failure.run(i, [&] {
-      if (!used[i]) return;
-      for (int j : adj.neighbours(i)) {
-        // Each pair is decided once, from its smaller node, and linked both ways below: the
-        // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
-        // floating point, and links must be symmetric (markDead writes both directions).
-        if (j <= i || !used[j]) continue;
-        const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
-        if (!boundaryLink) {
-          if (nextB[i] >= 0 && !inSector(i, j)) continue;
-          if (nextB[j] >= 0 && !inSector(j, i)) continue;
-          if (grid.crosses(i, j)) continue;
+#pragma omp parallel num_threads(threads)
+  {
+    auto& out = perThread[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i)
+      failure.run(i, [&] {
+        if (!used[i]) return;
+        for (int j : adj.neighbours(i)) {
+          // Each pair is decided once, from its smaller node, and linked both ways below: the
+          // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
+          // floating point, and links must be symmetric (markDead writes both directions).
+          if (j <= i || !used[j]) continue;
+          const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
+          if (!boundaryLink) {
+            if (nextB[i] >= 0 && !inSector(i, j)) continue;
+            if (nextB[j] >= 0 && !inSector(j, i)) continue;
+            if (grid.crosses(i, j)) continue;
+          }
+          out.emplace_back(i, j);
         }
-        rowsOf[i].push_back(j);
-      }
-    });
+      });
+  }
   failure.rethrow();
-  for (int i = 0; i < n; ++i)
-    for (int j : rowsOf[i])
-      if (j > i) rowsOf[j].push_back(i);
+  std::vector<std::pair<int, int>> pairs;
+  std::size_t total = 0;
+  for (const auto& v : perThread) total += v.size();
+  pairs.reserve(total + placement.boundaryEdges.size());
+  for (auto& v : perThread) {
+    pairs.insert(pairs.end(), v.begin(), v.end());
+    v = {};
+  }
   // Boundary edges are links even if the adjacency radius missed them.
+  std::vector<int> upper(std::size_t(n) + 1, 0);  // pairs[upper[i] ..) start with i
+  for (const auto& pr : pairs) ++upper[std::size_t(pr.first) + 1];
+  for (int i = 0; i < n; ++i) upper[std::size_t(i) + 1] += upper[std::size_t(i)];
+  const std::size_t found = pairs.size();
   for (const auto& e : placement.boundaryEdges) {
-    for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
-      if (std::find(rowsOf[i].begin(), rowsOf[i].end(), j) == rowsOf[i].end()) rowsOf[i].push_back(j);
+    const int lo = std::min(e.a, e.b), hi = std::max(e.a, e.b);
+    const auto first = pairs.begin() + upper[std::size_t(lo)], last = pairs.begin() + upper[std::size_t(lo) + 1];
+    const bool listed = std::any_of(first, last, [&](const std::pair<int, int>& pr) { return pr.second == hi; }) ||
+                        std::find(pairs.begin() + std::ptrdiff_t(found), pairs.end(), std::pair{lo, hi}) != pairs.end();
+    if (!listed) pairs.emplace_back(lo, hi);
   }
-  Links links;
-  links.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
-  links.ids.resize(links.offsets[n]);
-  links.ccw.resize(links.offsets[n]);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int i = 0; i < n; ++i) {
-    std::sort(rowsOf[i].begin(), rowsOf[i].end());
-    std::copy(rowsOf[i].begin(), rowsOf[i].end(), links.ids.begin() + links.offsets[i]);
-    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
-    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
-    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
-              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
-  }
+  Links links = linksFromPairs(pos, std::move(pairs), threads);
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
   return links;
