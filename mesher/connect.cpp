@@ -40,7 +40,12 @@ bool properCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
   return orient2d(p, q, r) * orient2d(p, q, s) < 0 && orient2d(r, s, p) * orient2d(r, s, q) < 0;
 }
 
-/// Boundary edges in a uniform grid, to test links against them.
+/// Boundary edges in a uniform grid, to test links against them, with an occupancy grid of
+/// kBlock × kBlock cells above it: a link walks the blocks and enters the cells of occupied
+/// ones only. The cells are about a boundary edge long, so where the boundary is finely cut (a
+/// layer crossing it) the interior links of anisotropy 10⁴ span hundreds of cells, nearly all
+/// empty: walked cell by cell they were too dear and were left to the scaffold (10 % of the
+/// layer's triangles repaired, a third of its connection time).
 class BoundaryGrid {
  public:
   BoundaryGrid(std::span<const Vec2> pos, std::span<const BoundaryEdge> edges) : pos_(pos), edges_(edges) {
@@ -74,12 +79,20 @@ class BoundaryGrid {
         });
       }
     }
+    bx_ = (nx_ + kBlock - 1) / kBlock;
+    by_ = (ny_ + kBlock - 1) / kBlock;
+    occupied_.assign(std::size_t(bx_) * by_, 0);
+    for (int y = 0; y < ny_; ++y)
+      for (int x = 0; x < nx_; ++x) {
+        const std::size_t c = std::size_t(y) * nx_ + x;
+        if (offsets_[c + 1] > offsets_[c]) occupied_[std::size_t(y / kBlock) * bx_ + x / kBlock] = 1;
+      }
   }
 
   /// Does segment p–q (link between nodes i and j) meet a boundary edge not incident to i or j?
   bool crosses(int i, int j) const {
     const Vec2 &p = pos_[i], &q = pos_[j];
-    return forCells(p, q, [&](std::size_t c) {
+    return forOccupiedCells(p, q, [&](std::size_t c) {
       for (int k = offsets_[c]; k < offsets_[c + 1]; ++k) {
         const auto& e = edges_[ids_[k]];
         if (e.a == i || e.a == j || e.b == i || e.b == j) continue;
@@ -96,9 +109,36 @@ class BoundaryGrid {
   double cell_ = 1, margin_ = 0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> offsets_, ids_;
+  static constexpr int kBlock = 16;
+  int bx_ = 1, by_ = 1;
+  std::vector<char> occupied_;  ///< per block of kBlock × kBlock cells: holds an edge
+
+  /// forCells for the cells of occupied blocks only: the segment is cut into pieces no longer
+  /// than a block, and the cells of a piece are visited if one of the ≤ 2×2 blocks of its box
+  /// is occupied (every cell it touches lies in those blocks).
+  template <class F>
+  bool forOccupiedCells(const Vec2& p, const Vec2& q, F&& f) const {
+    const double block = kBlock * cell_;
+    const auto bx = [&](double x) { return std::clamp(int((x - lo_.x()) / block), 0, bx_ - 1); };
+    const auto by = [&](double y) { return std::clamp(int((y - lo_.y()) / block), 0, by_ - 1); };
+    const double len = (q - p).lpNorm<Eigen::Infinity>() / block;
+    const int pieces = 1 + int(std::min(len, double(bx_ + by_)));
+    for (int k = 0; k < pieces; ++k) {
+      const Vec2 a = p + (q - p) * (double(k) / pieces),
+                 b = k + 1 == pieces ? q : p + (q - p) * (double(k + 1) / pieces);
+      const int x0 = bx(std::min(a.x(), b.x()) - margin_), x1 = bx(std::max(a.x(), b.x()) + margin_);
+      const int y0 = by(std::min(a.y(), b.y()) - margin_), y1 = by(std::max(a.y(), b.y()) + margin_);
+      bool any = false;
+      for (int y = y0; y <= y1 && !any; ++y)
+        for (int x = x0; x <= x1 && !any; ++x) any = occupied_[std::size_t(y) * bx_ + x] != 0;
+      if (any && forCells(a, b, f)) return true;
+    }
+    return false;
+  }
 
   /// Calls f on every cell the closed segment p–q touches (it is cut into pieces no longer
-  /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true.
+  /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true; a cell may
+  /// be visited twice.
   template <class F>
   bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
     const auto cx = [&](double x) { return std::clamp(int((x - lo_.x()) / cell_), 0, nx_ - 1); };
@@ -115,11 +155,6 @@ class BoundaryGrid {
     }
     return false;
   }
-
- public:
-  /// Cells a link would visit; links spanning more than kMaxLinkCells are not tested.
-  int span(int i, int j) const { return 1 + int((pos_[j] - pos_[i]).lpNorm<Eigen::Infinity>() / cell_); }
-  static constexpr int kMaxLinkCells = 256;
 };
 
 /// The candidate links and their state during the deletions of step 2.
@@ -211,9 +246,8 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
   // The links (i, j), j > i, decided in parallel: schedule(static) hands each thread one range
   // of i, in thread order, so the threads' lists concatenated run in i order.
   std::vector<std::vector<std::pair<int, int>>> perThread(std::size_t(std::max(threads, 1)));
-  long longLinks = 0;
   ParallelFailure failure;  // push_back may throw: rethrown after the region
-#pragma omp parallel num_threads(threads) reduction(+ : longLinks)
+#pragma omp parallel num_threads(threads)
   {
     auto& out = perThread[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static)
@@ -229,12 +263,6 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
           if (!boundaryLink) {
             if (nextB[i] >= 0 && !inSector(i, j)) continue;
             if (nextB[j] >= 0 && !inSector(j, i)) continue;
-            // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
-            // size) is not worth testing: dropped, its triangles come from the scaffold.
-            if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) {
-              ++longLinks;
-              continue;
-            }
             if (grid.crosses(i, j)) continue;
           }
           out.emplace_back(i, j);
@@ -263,7 +291,6 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
     if (!listed) pairs.emplace_back(lo, hi);
   }
   Links links = linksFromPairs(pos, std::move(pairs), threads);
-  st.longLinksDropped = longLinks;
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
   return links;
@@ -372,7 +399,7 @@ std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, c
 /// consistent triangles (sorted, smallest id first). Fills the local-mesh statistics.
 std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, const std::vector<char>& used,
                                             int threads, ConnectStats& st) {
-  st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
+  st.links = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
   st.deletionRounds = 0;
   const Stopwatch watch;
   Links links = buildLinks(placement, used, threads, st);
