@@ -32,7 +32,6 @@ nlohmann::json meshStatsJson(const mesher::MeshStats& s) {
   return {{"placement", placementStatsJson(s.placement)},
           {"connect",
            {{"links", c.links},
-            {"longLinksDropped", c.longLinksDropped},
             {"intersectionTests", c.intersectionTests},
             {"crossingsFound", c.crossingsFound},
             {"deletedEdges", c.deletedEdges},

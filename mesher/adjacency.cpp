@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <numeric>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 namespace ablmg::mesher {
@@ -446,38 +447,39 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
 namespace {
 
 /// The pairs within the radius that have a new bubble (id ≥ firstNew), as (row, partner) in
-/// both directions, sorted. Each pair is searched from its lighter node (kPairSearch): a new
-/// bubble searches a tree of all bubbles, an old one a tree of the new ones.
+/// both directions, sorted, from a search structure of the new bubbles only (a population
+/// pass adds 10²–10³ of them: a tree of all the bubbles each pass was a serial
+/// O(n log n)). A pair within the radius lies in the kPairSearch box of either node: an old
+/// bubble finds all its new partners in its own box; two new ones, from the lighter.
 std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2> x, std::span<const Metric2> m,
                                               double radius) {
   const int n = int(x.size());
   std::vector<std::pair<int, int>> pairs;
   if (firstNew >= n) return pairs;
-  const BoxWeights b = boxWeights(m);
-  const std::vector<double>& w = b.w;
-  const NodeIndex all(x, w, b.reach),
-      fresh(x.subspan(std::size_t(firstNew)), std::span(w).subspan(std::size_t(firstNew)),
-            std::span(b.reach).subspan(std::size_t(firstNew)));
+  const BoxWeights b = boxWeights(m.subspan(std::size_t(firstNew)));
+  const std::vector<double>& w = b.w;  // w[q]: new bubble firstNew + q
+  const NodeIndex fresh(x.subspan(std::size_t(firstNew)), w, b.reach);
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
-  ParallelFailure failure;  // push_back may throw: rethrown after the region (index k, then n + j)
+  ParallelFailure failure;  // push_back may throw: rethrown after the region (index j)
 #pragma omp parallel if (n >= kMinParallelItems)
   {
     auto& out = found[std::size_t(omp_get_thread_num())];
-#pragma omp for schedule(static) nowait
-    for (int k = firstNew; k < n; ++k)
-      failure.run(k, [&] {
-        const Vec2 R = searchBox(m[k], kPairSearch * radius);
-        all.forEachInBoxFrom(x[k], R.x(), R.y(), w[k], [&](int j) {
-          if ((w[j] > w[k] || j > k) && withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
-        });
-      });
 #pragma omp for schedule(static)
-    for (int j = 0; j < firstNew; ++j)
-      failure.run(long(n) + j, [&] {  // ties go to j, the smaller id
+    for (int j = 0; j < n; ++j)
+      failure.run(j, [&] {
         const Vec2 R = searchBox(m[j], kPairSearch * radius);
-        fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[j], [&](int q) {
+        if (j < firstNew) {
+          fresh.forEachInBoxFrom(x[j], R.x(), R.y(), -std::numeric_limits<double>::infinity(), [&](int q) {
+            const int k = firstNew + q;
+            if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+          });
+          return;
+        }
+        const int p = j - firstNew;
+        fresh.forEachInBoxFrom(x[j], R.x(), R.y(), w[std::size_t(p)], [&](int q) {
           const int k = firstNew + q;
-          if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});
+          if ((w[std::size_t(q)] > w[std::size_t(p)] || q > p) && withinMetricRadius(x[k] - x[j], m[j], m[k], radius))
+            out.push_back({j, k});
         });
       });
   }

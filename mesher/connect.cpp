@@ -40,7 +40,12 @@ bool properCross(const Vec2& p, const Vec2& q, const Vec2& r, const Vec2& s) {
   return orient2d(p, q, r) * orient2d(p, q, s) < 0 && orient2d(r, s, p) * orient2d(r, s, q) < 0;
 }
 
-/// Boundary edges in a uniform grid, to test links against them.
+/// Boundary edges in a uniform grid, to test links against them, with an occupancy grid of
+/// kBlock × kBlock cells above it: a link walks the blocks and enters the cells of occupied
+/// ones only. The cells are about a boundary edge long, so where the boundary is finely cut (a
+/// layer crossing it) the interior links of anisotropy 10⁴ span hundreds of cells, nearly all
+/// empty: walked cell by cell they were too dear and were left to the scaffold (10 % of the
+/// layer's triangles repaired, a third of its connection time).
 class BoundaryGrid {
  public:
   BoundaryGrid(std::span<const Vec2> pos, std::span<const BoundaryEdge> edges) : pos_(pos), edges_(edges) {
@@ -74,12 +79,20 @@ class BoundaryGrid {
         });
       }
     }
+    bx_ = (nx_ + kBlock - 1) / kBlock;
+    by_ = (ny_ + kBlock - 1) / kBlock;
+    occupied_.assign(std::size_t(bx_) * by_, 0);
+    for (int y = 0; y < ny_; ++y)
+      for (int x = 0; x < nx_; ++x) {
+        const std::size_t c = std::size_t(y) * nx_ + x;
+        if (offsets_[c + 1] > offsets_[c]) occupied_[std::size_t(y / kBlock) * bx_ + x / kBlock] = 1;
+      }
   }
 
   /// Does segment p–q (link between nodes i and j) meet a boundary edge not incident to i or j?
   bool crosses(int i, int j) const {
     const Vec2 &p = pos_[i], &q = pos_[j];
-    return forCells(p, q, [&](std::size_t c) {
+    return forOccupiedCells(p, q, [&](std::size_t c) {
       for (int k = offsets_[c]; k < offsets_[c + 1]; ++k) {
         const auto& e = edges_[ids_[k]];
         if (e.a == i || e.a == j || e.b == i || e.b == j) continue;
@@ -96,9 +109,36 @@ class BoundaryGrid {
   double cell_ = 1, margin_ = 0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> offsets_, ids_;
+  static constexpr int kBlock = 16;
+  int bx_ = 1, by_ = 1;
+  std::vector<char> occupied_;  ///< per block of kBlock × kBlock cells: holds an edge
+
+  /// forCells for the cells of occupied blocks only: the segment is cut into pieces no longer
+  /// than a block, and the cells of a piece are visited if one of the ≤ 2×2 blocks of its box
+  /// is occupied (every cell it touches lies in those blocks).
+  template <class F>
+  bool forOccupiedCells(const Vec2& p, const Vec2& q, F&& f) const {
+    const double block = kBlock * cell_;
+    const auto bx = [&](double x) { return std::clamp(int((x - lo_.x()) / block), 0, bx_ - 1); };
+    const auto by = [&](double y) { return std::clamp(int((y - lo_.y()) / block), 0, by_ - 1); };
+    const double len = (q - p).lpNorm<Eigen::Infinity>() / block;
+    const int pieces = 1 + int(std::min(len, double(bx_ + by_)));
+    for (int k = 0; k < pieces; ++k) {
+      const Vec2 a = p + (q - p) * (double(k) / pieces),
+                 b = k + 1 == pieces ? q : p + (q - p) * (double(k + 1) / pieces);
+      const int x0 = bx(std::min(a.x(), b.x()) - margin_), x1 = bx(std::max(a.x(), b.x()) + margin_);
+      const int y0 = by(std::min(a.y(), b.y()) - margin_), y1 = by(std::max(a.y(), b.y()) + margin_);
+      bool any = false;
+      for (int y = y0; y <= y1 && !any; ++y)
+        for (int x = x0; x <= x1 && !any; ++x) any = occupied_[std::size_t(y) * bx_ + x] != 0;
+      if (any && forCells(a, b, f)) return true;
+    }
+    return false;
+  }
 
   /// Calls f on every cell the closed segment p–q touches (it is cut into pieces no longer
-  /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true.
+  /// than a cell, each visiting the ≤ 2×2 cells of its box), until f returns true; a cell may
+  /// be visited twice.
   template <class F>
   bool forCells(const Vec2& p, const Vec2& q, F&& f) const {
     const auto cx = [&](double x) { return std::clamp(int((x - lo_.x()) / cell_), 0, nx_ - 1); };
@@ -115,11 +155,6 @@ class BoundaryGrid {
     }
     return false;
   }
-
- public:
-  /// Cells a link would visit; links spanning more than kMaxLinkCells are not tested.
-  int span(int i, int j) const { return 1 + int((pos_[j] - pos_[i]).lpNorm<Eigen::Infinity>() / cell_); }
-  static constexpr int kMaxLinkCells = 256;
 };
 
 /// The candidate links and their state during the deletions of step 2.
@@ -156,6 +191,38 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
   return u.squaredNorm() < v.squaredNorm();
 }
 
+/// Symmetric CSR rows of the links (i, j) (each listed once), each row sorted by id with its
+/// counter-clockwise order.
+Links linksFromPairs(std::span<const Vec2> pos, std::vector<std::pair<int, int>> pairs, int threads) {
+  const int n = int(pos.size());
+  Links links;
+  links.offsets.assign(n + 1, 0);
+  for (const auto& [i, j] : pairs) {
+    ++links.offsets[i + 1];
+    ++links.offsets[j + 1];
+  }
+  for (int i = 0; i < n; ++i) links.offsets[i + 1] += links.offsets[i];
+  links.ids.resize(links.offsets[n]);
+  links.ccw.resize(links.offsets[n]);
+  {
+    std::vector<int> fill(links.offsets.begin(), links.offsets.end() - 1);
+    for (const auto& [i, j] : pairs) {
+      links.ids[std::size_t(fill[std::size_t(i)]++)] = j;
+      links.ids[std::size_t(fill[std::size_t(j)]++)] = i;
+    }
+  }
+  pairs = {};
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (int i = 0; i < n; ++i) {
+    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
+    std::sort(links.ids.begin() + b, links.ids.begin() + b + m);
+    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
+    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
+              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
+  }
+  return links;
+}
+
 /// Step 1 (paper §4.1): the links, adjacency pairs of used nodes inside the domain (not
 /// leaving a boundary node's angle, not crossing a boundary edge), plus every boundary edge;
 /// rows sorted by id, with their counter-clockwise order.
@@ -176,57 +243,54 @@ Links buildLinks(const PlacementResult& placement, const std::vector<char>& used
     return turn > 0 ? (left1 && left2) : turn < 0 ? (left1 || left2) : left1;
   };
   const auto& adj = placement.adjacency;
-  std::vector<std::vector<int>> rowsOf(n);
-  long longLinks = 0;
+  // The links (i, j), j > i, decided in parallel: schedule(static) hands each thread one range
+  // of i, in thread order, so the threads' lists concatenated run in i order.
+  std::vector<std::vector<std::pair<int, int>>> perThread(std::size_t(std::max(threads, 1)));
   ParallelFailure failure;  // push_back may throw: rethrown after the region
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads) reduction(+ : longLinks)
-  for (int i = 0; i < n; ++i)
-    failure.run(i, [&] {
-      if (!used[i]) return;
-      for (int j : adj.neighbours(i)) {
-        // Each pair is decided once, from its smaller node, and linked both ways below: the
-        // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
-        // floating point, and links must be symmetric (markDead writes both directions).
-        if (j <= i || !used[j]) continue;
-        const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
-        if (!boundaryLink) {
-          if (nextB[i] >= 0 && !inSector(i, j)) continue;
-          if (nextB[j] >= 0 && !inSector(j, i)) continue;
-          // A link spanning hundreds of boundary-grid cells (metric sizes near the domain's
-          // size) is not worth testing: dropped, its triangles come from the scaffold.
-          if (grid.span(i, j) > BoundaryGrid::kMaxLinkCells) {
-            ++longLinks;
-            continue;
+#pragma omp parallel num_threads(threads)
+  {
+    auto& out = perThread[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i)
+      failure.run(i, [&] {
+        if (!used[i]) return;
+        for (int j : adj.neighbours(i)) {
+          // Each pair is decided once, from its smaller node, and linked both ways below: the
+          // tests (boundary-grid walk, sectors) need not give the same answer from both ends in
+          // floating point, and links must be symmetric (markDead writes both directions).
+          if (j <= i || !used[j]) continue;
+          const bool boundaryLink = (nextB[i] == j || prevB[i] == j);
+          if (!boundaryLink) {
+            if (nextB[i] >= 0 && !inSector(i, j)) continue;
+            if (nextB[j] >= 0 && !inSector(j, i)) continue;
+            if (grid.crosses(i, j)) continue;
           }
-          if (grid.crosses(i, j)) continue;
+          out.emplace_back(i, j);
         }
-        rowsOf[i].push_back(j);
-      }
-    });
+      });
+  }
   failure.rethrow();
-  for (int i = 0; i < n; ++i)
-    for (int j : rowsOf[i])
-      if (j > i) rowsOf[j].push_back(i);
+  std::vector<std::pair<int, int>> pairs;
+  std::size_t total = 0;
+  for (const auto& v : perThread) total += v.size();
+  pairs.reserve(total + placement.boundaryEdges.size());
+  for (auto& v : perThread) {
+    pairs.insert(pairs.end(), v.begin(), v.end());
+    v = {};
+  }
   // Boundary edges are links even if the adjacency radius missed them.
+  std::vector<int> upper(std::size_t(n) + 1, 0);  // pairs[upper[i] ..) start with i
+  for (const auto& pr : pairs) ++upper[std::size_t(pr.first) + 1];
+  for (int i = 0; i < n; ++i) upper[std::size_t(i) + 1] += upper[std::size_t(i)];
+  const std::size_t found = pairs.size();
   for (const auto& e : placement.boundaryEdges) {
-    for (auto [i, j] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}})
-      if (std::find(rowsOf[i].begin(), rowsOf[i].end(), j) == rowsOf[i].end()) rowsOf[i].push_back(j);
+    const int lo = std::min(e.a, e.b), hi = std::max(e.a, e.b);
+    const auto first = pairs.begin() + upper[std::size_t(lo)], last = pairs.begin() + upper[std::size_t(lo) + 1];
+    const bool listed = std::any_of(first, last, [&](const std::pair<int, int>& pr) { return pr.second == hi; }) ||
+                        std::find(pairs.begin() + std::ptrdiff_t(found), pairs.end(), std::pair{lo, hi}) != pairs.end();
+    if (!listed) pairs.emplace_back(lo, hi);
   }
-  Links links;
-  links.offsets.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) links.offsets[i + 1] = links.offsets[i] + int(rowsOf[i].size());
-  links.ids.resize(links.offsets[n]);
-  links.ccw.resize(links.offsets[n]);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (int i = 0; i < n; ++i) {
-    std::sort(rowsOf[i].begin(), rowsOf[i].end());
-    std::copy(rowsOf[i].begin(), rowsOf[i].end(), links.ids.begin() + links.offsets[i]);
-    const int b = links.offsets[i], m = links.offsets[i + 1] - b;
-    for (int k = 0; k < m; ++k) links.ccw[b + k] = k;
-    std::sort(links.ccw.begin() + b, links.ccw.begin() + b + m,
-              [&](int x, int y) { return ccwLess(pos[links.ids[b + x]] - pos[i], pos[links.ids[b + y]] - pos[i]); });
-  }
-  st.longLinksDropped = longLinks;
+  Links links = linksFromPairs(pos, std::move(pairs), threads);
   links.alive.assign(links.ids.size(), 1);
   st.links = long(links.ids.size() / 2);
   return links;
@@ -335,7 +399,7 @@ std::vector<std::array<int, 3>> consistentTriangles(std::span<const Vec2> pos, c
 /// consistent triangles (sorted, smallest id first). Fills the local-mesh statistics.
 std::vector<std::array<int, 3>> localMeshes(const PlacementResult& placement, const std::vector<char>& used,
                                             int threads, ConnectStats& st) {
-  st.links = st.longLinksDropped = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
+  st.links = st.intersectionTests = st.crossingsFound = st.deletedEdges = 0;
   st.deletionRounds = 0;
   const Stopwatch watch;
   Links links = buildLinks(placement, used, threads, st);

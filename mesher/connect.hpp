@@ -36,7 +36,6 @@ struct ConnectOptions {
 
 struct ConnectStats {
   long links = 0;              ///< adjacency pairs kept as candidate edges (inside the domain)
-  long longLinksDropped = 0;   ///< links too long to test cheaply against the boundary (sizes near the domain's)
   long intersectionTests = 0;  ///< segment crossing tests (paper §4.3 reports 157317)
   long crossingsFound = 0;
   long deletedEdges = 0;  ///< non-satellite links removed by eq. (12)

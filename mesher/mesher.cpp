@@ -56,7 +56,6 @@ void addPartStats(MeshStats& whole, const MeshStats& part) {
   auto& c = whole.connect;
   const auto& d = part.connect;
   for (auto [a, b] : {std::pair{&c.links, d.links},
-                      {&c.longLinksDropped, d.longLinksDropped},
                       {&c.intersectionTests, d.intersectionTests},
                       {&c.crossingsFound, d.crossingsFound},
                       {&c.deletedEdges, d.deletedEdges},

@@ -82,13 +82,26 @@ void zOrder(NodeSet& nodes, int first) {
   }
   const double cell = std::max((hi - lo).maxCoeff() / double(1 << 20), 1e-300);
   std::vector<std::pair<std::uint64_t, int>> key(std::size_t(n - first));
+  const bool parallel = n - first >= kMinParallelItems;
+#pragma omp parallel for schedule(static) if (parallel)
   for (int i = first; i < n; ++i) {
     const Vec2 q = (nodes.positions[i] - lo) / cell;
     const auto cx = std::uint64_t(std::clamp(q.x(), 0.0, 4e9)), cy = std::uint64_t(std::clamp(q.y(), 0.0, 4e9));
     key[std::size_t(i - first)] = {spreadBits(cx) | (spreadBits(cy) << 1), i};
   }
-  std::sort(key.begin(), key.end());
+  // The keys are distinct (index ties): two halves sorted side by side and merged give the
+  // one sorted order.
+  const auto mid = key.begin() + std::ptrdiff_t(key.size() / 2);
+#pragma omp parallel sections if (parallel)
+  {
+#pragma omp section
+    std::sort(key.begin(), mid);
+#pragma omp section
+    std::sort(mid, key.end());
+  }
+  std::inplace_merge(key.begin(), mid, key.end());
   NodeSet old = nodes;
+#pragma omp parallel for schedule(static) if (parallel)
   for (int k = 0; k < n - first; ++k) {
     const int from = key[std::size_t(k)].second, to = first + k;
     nodes.positions[to] = old.positions[from];
