@@ -7,6 +7,7 @@ packages=(
   cmake g++ make pkg-config
   libeigen3-dev        # dense 2x2/3x3 algebra, sparse matrices (core, fem, adapt)
   libsuitesparse-dev   # CHOLMOD supernodal Cholesky for the P1 systems (fem)
+  liblapack-dev        # dpotrf/dtrsv for the separator's dense Schur complement (fem/split_cholesky.cpp)
   libmetis-dev         # METIS_NodeND, the graph ordering compared with ours (fem/ordering.cpp)
   libopenblas0-pthread # optimised BLAS for CHOLMOD's supernodal kernels (4x faster than reference BLAS at 10^6)
   nlohmann-json3-dev   # JSON configuration and reports (cli)
