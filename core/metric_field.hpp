@@ -43,6 +43,10 @@ class MetricField {
   virtual void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const;
   /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
   virtual bool isConstant() const { return false; }
+  /// True if at() and evaluate() may be called from several threads at once (the mesher then
+  /// grows large initial lattices in parallel bands). Default false: a field of the caller's
+  /// own is evaluated from one thread.
+  virtual bool isThreadSafe() const { return false; }
   /// True if the field carries lattice rows (latticeRow below).
   virtual bool hasLatticeRows() const { return false; }
   /// The lattice row hint at p: w (cos 2α, sin 2α), w ∈ [0, 1] the weight with which the
@@ -57,6 +61,7 @@ class ConstantMetricField final : public MetricField {
   explicit ConstantMetricField(const Metric2& m) : m_(m) {}
   Metric2 at(const Vec2&) const override { return m_; }
   bool isConstant() const override { return true; }
+  bool isThreadSafe() const override { return true; }
 
  private:
   Metric2 m_;
@@ -72,6 +77,8 @@ class AnalyticMetricField final : public MetricField {
   Metric2 at(const Vec2& p) const override;
   /// True when no expression uses x or y (then M is evaluated once, at construction).
   bool isConstant() const override;
+  /// Only when constant: evaluating the expressions uses muparser's state.
+  bool isThreadSafe() const override { return isConstant(); }
 
  private:
   struct Impl;
@@ -90,6 +97,7 @@ class BackgroundMetricField final : public MetricField {
   /// ≤ 1, or empty = none), interpolated linearly with the barycentric weights.
   BackgroundMetricField(Mesh2 mesh, std::vector<Metric2> metrics, std::vector<Vec2> rows,
                         MeshCheck check = MeshCheck::Validate);
+  bool isThreadSafe() const override { return true; }
   bool hasLatticeRows() const override { return !rows_.empty(); }
   Vec2 latticeRow(const Vec2& p, int& hint) const override;
   Metric2 at(const Vec2& p) const override;

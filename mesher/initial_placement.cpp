@@ -512,7 +512,7 @@ std::vector<Vec2> probePoints(const Vec2& lo, const Vec2& hi, int g, int rows) {
 constexpr double kBandNodes = 40000;
 constexpr int kMaxBands = 32;
 int latticeBands(const MetricField& metric, const Vec2& lo, const Vec2& hi, double spacing, bool warm) {
-  const bool threadSafe = metric.isConstant() || dynamic_cast<const BackgroundMetricField*>(&metric) != nullptr;
+  const bool threadSafe = metric.isConstant() || metric.isThreadSafe();
   const double expected = (hi - lo).prod() / std::max(spacing * spacing, 1e-300);
   if (warm || !threadSafe || !(expected >= 4 * kBandNodes)) return 0;
   return 2 * std::clamp(int(expected / (2 * kBandNodes)), 2, kMaxBands / 2);
