@@ -158,6 +158,11 @@ struct AdaptOptions {
   /// with the aspect ratio the Hessian of u allows; M(z) bounds h_long where z is curved.
   /// Default 0.01 (measured in dual_weight.hpp); 0 = off (no dual Hessian recovery).
   double dualShare = 0.01;
+  /// With dualShare > 0: the dual's Hessians are weighted per vertex by |tr H_u| (the recovered
+  /// Laplacian of u_h) before their metric is built, M(|Δu_h| |H_z|; φ_z N) (adapt/dual_weight.hpp,
+  /// "Goal weighting"): the dual's curvature bounds the long size only where ∇(u − Πu) is large.
+  /// false (default): M(H_z; φ_z N).
+  bool dualGoal = false;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
