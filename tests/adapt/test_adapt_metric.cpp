@@ -140,6 +140,30 @@ TEST(AdaptMetric, DualShareBoundsTheAnisotropyOfAFlatDirectionAtTheSameComplexit
   EXPECT_THROW(validate(bad), InputError);
 }
 
+TEST(AdaptMetric, LoopDefaultCapLetsAStraightLayerReachHmax) {
+  // u = y²: u_xx = 0, so the Hessian sets no long size; the cap on h_long/h_short does. At 10⁷
+  // vertices h_y ≈ 10⁻⁵ against hmax = √2/4: the loop's default (10⁵) leaves h_x at hmax, the
+  // metric options' own default (10⁴) binds.
+  const Mesh2 mesh = fem::unitSquareMesh(30, 0.15, 3);
+  std::vector<double> u(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v) u[v] = mesh.vertices[v].y() * mesh.vertices[v].y();
+  AdaptOptions o;
+  o.dualShare = 0;
+  const auto hu = recoverHessians(mesh, u, o.hessian);
+  auto worstAspect = [&] {
+    double worst = 0;
+    for (const auto& m : metricFromRecovered(mesh, hu, 1e7, o).metric) {
+      const MetricEigen e = m.eigen();
+      worst = std::max(worst, e.h1 / e.h2);
+    }
+    return worst;
+  };
+  EXPECT_EQ(o.metric.maxAnisotropy, 1e5);
+  EXPECT_GT(worstAspect(), 1.5e4);
+  o.metric.maxAnisotropy = MetricOptions{}.maxAnisotropy;
+  EXPECT_LE(worstAspect(), 1e4 * (1 + 1e-9));
+}
+
 TEST(AdaptMetric, DualGoalWeightsTheDualMetricByTheLaplacianOfU) {
   const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);
   std::vector<double> flat(mesh.numVertices()), ramp(mesh.numVertices()), z(mesh.numVertices());
