@@ -118,7 +118,9 @@ struct AdaptOptions {
   /// ratio to FreeFem++ 0.54 → 0.46. No other problem of the library reaches the cap (their
   /// errors are unchanged to the last digit; `examples/compare_freefem/run.sh --problem all
   /// --maxnv 4e4`). Capping the long size instead (hmax 0.05 or the far-field floor hmaxUniform)
-  /// raises the layer's L2 error 10–40×.
+  /// raises the layer's L2 error 10–40×. Cost: the sides crossing the layer carry one vertex per
+  /// row of its triangles, so its meshes have 8–11 % more vertices (+1–2 % triangles; the
+  /// complexity does not count boundary vertices) and its loop +9 % CPU (docs/experiments.md).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
