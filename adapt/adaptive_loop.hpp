@@ -106,11 +106,27 @@ struct AdaptOptions {
   /// built by the mesher from the per-vertex lattice rows the loop hands over with the metric):
   /// the corners' H1 0.96 → 0.91× FreeFem's, their L2 0.83–0.93 → 0.75–0.82×, the others within
   /// ±0.03 (measurements there).
+  ///
+  /// maxAnisotropy 10⁵ (MetricOptions' own default is 10⁴). Where u varies in one direction only
+  /// (a straight layer: u_xx = 0) the Hessian sets no long size, and the cap is what sets it: at
+  /// 10⁴ the layer's triangles were 0.1 × 10⁻⁵, and its FE L2 error stalled at 30–100× the
+  /// interpolation error, a smooth error exported into the flat region beside the layer (77 % of
+  /// L2² at distance ≥ 0.04 from it, 1.4·10⁴ vertices): the layer's L2 rate over the last four
+  /// sizes −0.53 (to 3.6·10⁴ vertices) and −0.38 (to 9.5·10⁴). At 10⁵ the long size reaches hmax
+  /// (the layer is meshed as rows across the domain, like the 1-d problem it is): −1.10 and
+  /// −1.02, the final L2 error 6.8× and the H1 error 2.4× lower at 10⁵ vertices, the worst H1
+  /// ratio to FreeFem++ 0.54 → 0.46. No other problem of the library reaches the cap (their
+  /// errors are unchanged to the last digit; `examples/compare_freefem/run.sh --problem all
+  /// --maxnv 4e4`). Capping the long size instead (hmax 0.05 or the far-field floor hmaxUniform)
+  /// raises the layer's L2 error 10–40×. Cost: the sides crossing the layer carry one vertex per
+  /// row of its triangles, so its meshes have 8–11 % more vertices (+1–2 % triangles; the
+  /// complexity does not count boundary vertices) and its loop +9 % CPU (docs/experiments.md).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
     m.shapeBlend = 0.05;
     m.saddleShape = 1;
+    m.maxAnisotropy = 1e5;
     return m;
   }();
   /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.25: without it the metric of a
@@ -158,6 +174,11 @@ struct AdaptOptions {
   /// with the aspect ratio the Hessian of u allows; M(z) bounds h_long where z is curved.
   /// Default 0.01 (measured in dual_weight.hpp); 0 = off (no dual Hessian recovery).
   double dualShare = 0.01;
+  /// With dualShare > 0: the dual's Hessians are weighted per vertex by |tr H_u| (the recovered
+  /// Laplacian of u_h) before their metric is built, M(|Δu_h| |H_z|; φ_z N) (adapt/dual_weight.hpp,
+  /// "Goal weighting"): the dual's curvature bounds the long size only where ∇(u − Πu) is large.
+  /// false (default): M(H_z; φ_z N).
+  bool dualGoal = false;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);

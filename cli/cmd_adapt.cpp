@@ -6,6 +6,7 @@
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+//               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
@@ -142,6 +143,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
     } else if (key == "--dual-share") {
       a.options.dualShare = parseNumber(value(), "adapt: --dual-share");
+    } else if (key == "--dual-goal") {
+      a.options.dualGoal = parseOnOff(value(), "adapt: --dual-goal");
     } else if (key == "--l2-share") {
       a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
     } else if (key == "--hmax-uniform") {
@@ -192,15 +195,15 @@ Args parseArgs(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
     } else {
-      ABLMG_REQUIRE(
-          false,
-          "adapt: unknown argument '"
-              << key
-              << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
-                 "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                 "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --max-aniso --seed "
-                 "--stop-l2 --stop-h1 --warm-start --lattice --saddle-shape --repeat-min-change "
-                 "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
+      ABLMG_REQUIRE(false,
+                    "adapt: unknown argument '"
+                        << key
+                        << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
+                           "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --dual-goal "
+                           "--max-aniso --seed "
+                           "--stop-l2 --stop-h1 --warm-start --lattice --saddle-shape --repeat-min-change "
+                           "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -310,6 +313,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"l2_share", a.options.l2Share},
           {"dual_weight", a.options.dualWeight},
           {"dual_share", a.options.dualShare},
+          {"dual_goal", a.options.dualGoal},
           {"warm_start", a.options.warmStart},
           {"repeat_min_change", a.options.repeatMinChange},
           {"saddle_shape", a.options.metric.saddleShape},
@@ -324,6 +328,7 @@ const char* kAdaptHelp =
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+                   [--dual-goal on|off]
                    [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long]
                    [--plateau-gain G] [--saddle-shape S] [--repeat-min-change C] [--uniform on|off] [--vtu on|off]
                    [--medit on|off]
