@@ -66,12 +66,17 @@ void noteCrowdedCorners(const Domain& domain, const MetricField& field) {
   }
 }
 
-int runMesh(const std::vector<std::string>& args) {
+/// The command line, as parsed. seed, maxNodes < 0: not given (the config's).
+struct MeshArgs {
   std::string configPath, reportPath;
   std::vector<std::string> outputs;
-  bool bubblesOnly = false, printOptions = false;
+  bool help = false, bubblesOnly = false, printOptions = false;
   long long seed = -1, maxNodes = -1;
   int verbosity = 1;
+};
+
+MeshArgs parseMeshArgs(const std::vector<std::string>& args) {
+  MeshArgs r;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -79,93 +84,73 @@ int runMesh(const std::vector<std::string>& args) {
       return args[++i];
     };
     if (a == "-h" || a == "--help") {
-      std::cout << kHelp;
-      return 0;
+      r.help = true;
+      return r;
     } else if (a == "-o") {
-      outputs.push_back(value());
-      checkOutputPath(outputs.back(), "-o");
+      r.outputs.push_back(value());
+      checkOutputPath(r.outputs.back(), "-o");
     } else if (a == "--report") {
-      reportPath = value();
+      r.reportPath = value();
     } else if (a == "--bubbles-only") {
-      bubblesOnly = true;
+      r.bubblesOnly = true;
     } else if (a == "--print-options") {
-      printOptions = true;
+      r.printOptions = true;
     } else if (a == "--seed") {
-      seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
+      r.seed = parseInteger(value(), "mesh: --seed", 0, std::numeric_limits<long long>::max());
     } else if (a == "-v") {
-      verbosity = int(parseInteger(value(), "mesh: -v", 0, 10));
+      r.verbosity = int(parseInteger(value(), "mesh: -v", 0, 10));
     } else if (a == "--max-nodes") {
-      maxNodes = parseInteger(value(), "mesh: --max-nodes", 1, std::numeric_limits<long long>::max());
+      r.maxNodes = parseInteger(value(), "mesh: --max-nodes", 1, std::numeric_limits<long long>::max());
     } else if (!a.empty() && a[0] == '-') {
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg mesh --help)");
     } else {
-      ABLMG_REQUIRE(configPath.empty(), "more than one config file ('" << configPath << "', '" << a << "')");
-      configPath = a;
+      ABLMG_REQUIRE(r.configPath.empty(), "more than one config file ('" << r.configPath << "', '" << a << "')");
+      r.configPath = a;
     }
   }
-  ABLMG_REQUIRE(!configPath.empty() || printOptions, "missing CONFIG.json (see ablmg mesh --help)");
+  ABLMG_REQUIRE(!r.configPath.empty() || r.printOptions, "missing CONFIG.json (see ablmg mesh --help)");
+  return r;
+}
 
-  // 1. Configuration; the command line overrides it.
-  Config cfg;
-  if (!configPath.empty()) cfg = loadConfig(configPath);
-  if (seed >= 0) cfg.options.placement.seed = std::uint64_t(seed);
-  if (maxNodes > 0) cfg.options.placement.maxNodes = long(maxNodes);
-  if (bubblesOnly) cfg.options.placement.bubblesOnly = true;
-  if (printOptions) {
-    printEffectiveOptions("mesh", cfg.preset, cfg.options, {{"config", configPath}});
-    return 0;
-  }
-  for (const auto* o : {&cfg.outputs.mesh, &cfg.outputs.vtu, &cfg.outputs.png})
-    if (!o->empty()) outputs.push_back(*o);
-  if (reportPath.empty()) reportPath = cfg.outputs.report;
-  ABLMG_REQUIRE(!outputs.empty() || !reportPath.empty(),
-                "no output (give -o OUT.mesh|.vtu|.png or \"outputs\" in the config)");
-
-  // 2. Print every option in effect, defaults included.
-  nlohmann::json resolved = {{"config", configPath},
-                             {"domain", {{"loops", cfg.domain.loops().size()}, {"area", cfg.domain.area()}}},
-                             {"metric", cfg.metricDescription},
-                             {"options", meshOptionsToJson(cfg.options)},
-                             {"outputs", outputs},
-                             {"report", reportPath}};
-  std::cout << "ablmg mesh: options " << resolved.dump() << "\n";
-
-  // 3. Mesh (or place the bubbles).
-  noteCrowdedCorners(cfg.domain, *cfg.metric);
-  ProgressLine progress("mesh", verbosity);
-  cfg.options.progress = progress.callback();
-  const Stopwatch watch;
+/// The mesh (or, with bubblesOnly, the placed nodes alone), the metric at its vertices and the
+/// statistics of every stage as JSON.
+struct MeshOutcome {
   Mesh2 mesh;
   std::vector<Metric2> metric;
   nlohmann::json stats;
+};
+
+MeshOutcome meshOrPlace(const Config& cfg, const std::string& configPath) {
+  MeshOutcome o;
   if (cfg.options.placement.bubblesOnly) {
     auto placed = mesher::placeNodes(cfg.domain, *cfg.metric, cfg.options.placement, cfg.options.progress);
-    mesh.vertices = placed.nodes.positions;
-    metric = std::move(placed.metrics);
-    stats = {{"placement", placementStatsJson(placed.stats)}};
+    o.mesh.vertices = placed.nodes.positions;
+    o.metric = std::move(placed.metrics);
+    o.stats = {{"placement", placementStatsJson(placed.stats)}};
   } else {
     auto r = cfg.regions.empty()
                  ? mesher::meshDomain(cfg.domain, *cfg.metric, cfg.options)
                  : adapt::meshDomainWithRegions(cfg.domain, cfg.regions, *cfg.metric, cfg.options, configPath);
-    mesh = std::move(r.mesh);
-    metric = std::move(r.metric);
-    stats = meshStatsJson(r.stats);
+    o.mesh = std::move(r.mesh);
+    o.metric = std::move(r.metric);
+    o.stats = meshStatsJson(r.stats);
   }
-  const double seconds = watch.seconds();
-  progress.clear();
+  return o;
+}
 
-  // 4. Outputs (atomic each); on failure remove the ones this run already wrote.
+/// Every output (atomic each) and the report; on failure removes the ones already written.
+void writeMeshOutputs(const Config& cfg, const std::vector<std::string>& outputs, const std::string& reportPath,
+                      nlohmann::json report, const MeshOutcome& o, double seconds) {
   std::vector<std::string> written;
   try {
-    for (const auto& o : outputs) {
-      writeMeshOutput(o, cfg.domain, mesh, metric);
-      written.push_back(o);
+    for (const auto& path : outputs) {
+      writeMeshOutput(path, cfg.domain, o.mesh, o.metric);
+      written.push_back(path);
     }
     if (!reportPath.empty()) {
-      nlohmann::json report = resolved;
-      report["stats"] = stats;
-      report["vertices"] = mesh.numVertices();
-      report["triangles"] = mesh.numTriangles();
+      report["stats"] = o.stats;
+      report["vertices"] = o.mesh.numVertices();
+      report["triangles"] = o.mesh.numTriangles();
       report["seconds"] = seconds;
       io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
     }
@@ -173,12 +158,58 @@ int runMesh(const std::vector<std::string>& args) {
     for (const auto& w : written) std::remove(w.c_str());
     throw;
   }
-  std::cout << "ablmg mesh: " << mesh.numVertices() << " vertices, " << mesh.numTriangles() << " triangles in "
+}
+
+int runMesh(const std::vector<std::string>& argv) {
+  const MeshArgs args = parseMeshArgs(argv);
+  if (args.help) {
+    std::cout << kHelp;
+    return 0;
+  }
+  // 1. Configuration; the command line overrides it.
+  Config cfg;
+  if (!args.configPath.empty()) cfg = loadConfig(args.configPath);
+  if (args.seed >= 0) cfg.options.placement.seed = std::uint64_t(args.seed);
+  if (args.maxNodes > 0) cfg.options.placement.maxNodes = long(args.maxNodes);
+  if (args.bubblesOnly) cfg.options.placement.bubblesOnly = true;
+  if (args.printOptions) {
+    printEffectiveOptions("mesh", cfg.preset, cfg.options, {{"config", args.configPath}});
+    return 0;
+  }
+  std::vector<std::string> outputs = args.outputs;
+  for (const auto* o : {&cfg.outputs.mesh, &cfg.outputs.vtu, &cfg.outputs.png})
+    if (!o->empty()) outputs.push_back(*o);
+  const std::string reportPath = args.reportPath.empty() ? cfg.outputs.report : args.reportPath;
+  ABLMG_REQUIRE(!outputs.empty() || !reportPath.empty(),
+                "no output (give -o OUT.mesh|.vtu|.png or \"outputs\" in the config)");
+
+  // 2. Print every option in effect, defaults included.
+  const nlohmann::json resolved = {{"config", args.configPath},
+                                   {"domain", {{"loops", cfg.domain.loops().size()}, {"area", cfg.domain.area()}}},
+                                   {"metric", cfg.metricDescription},
+                                   {"options", meshOptionsToJson(cfg.options)},
+                                   {"outputs", outputs},
+                                   {"report", reportPath}};
+  std::cout << "ablmg mesh: options " << resolved.dump() << "\n";
+
+  // 3. Mesh (or place the bubbles).
+  noteCrowdedCorners(cfg.domain, *cfg.metric);
+  ProgressLine progress("mesh", args.verbosity);
+  cfg.options.progress = progress.callback();
+  const Stopwatch watch;
+  const MeshOutcome o = meshOrPlace(cfg, args.configPath);
+  const double seconds = watch.seconds();
+  progress.clear();
+
+  // 4. Outputs.
+  writeMeshOutputs(cfg, outputs, reportPath, resolved, o, seconds);
+  const nlohmann::json& stats = o.stats;
+  std::cout << "ablmg mesh: " << o.mesh.numVertices() << " vertices, " << o.mesh.numTriangles() << " triangles in "
             << seconds << " s (" << stats["placement"]["steps"] << " steps, residual "
             << stats["placement"]["finalResidual"];
   if (stats.contains("connect")) std::cout << ", repaired triangles " << stats["connect"]["repairedTriangles"];
   std::cout << ")";
-  for (const auto& o : outputs) std::cout << " -> " << o;
+  for (const auto& path : outputs) std::cout << " -> " << path;
   std::cout << "\n";
   return 0;
 }

@@ -121,188 +121,222 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
   return {std::move(mesh), std::move(metrics)};
 }
 
-int runRemesh(const std::vector<std::string>& args) {
-  std::string in, sol, out, reportPath;
+/// The command line, as parsed; paths completed with their defaults.
+struct RemeshArgs {
+  std::string in, sol, out, outSol, reportPath;
   double hmin = 0, hmax = std::numeric_limits<double>::infinity(), hgrad = 1.3, hsiz = 0, metricQuantum = 0;
   adapt::InteriorLoops interiorLoops = adapt::InteriorLoops::Holes;
   int verbose = 1, metField = 0;
-  bool printOptions = false, noSurf = false;
+  bool help = false, printOptions = false, noSurf = false;
   long long seed = 0;
   mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
+};
+
+/// Parses the flags; errors name the flag. Stops at -h (help = true).
+RemeshArgs parseRemeshArgs(const std::vector<std::string>& args) {
+  RemeshArgs r;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
       ABLMG_REQUIRE(i + 1 < args.size(), a << " needs a value");
       return args[++i];
     };
+    const auto number = [&] { return parseNumber(value(), "remesh: " + a); };
     if (a == "-h" || a == "--help" || a == "-help") {
-      std::cout << kHelp;
-      return 0;
+      r.help = true;
+      return r;
     } else if (a == "-in")
-      in = value();
+      r.in = value();
     else if (a == "-sol" || a == "-met")
-      sol = value();
+      r.sol = value();
     else if (a == "-out")
-      out = value();
+      r.out = value();
     else if (a == "-met-field")
-      metField = int(parseInteger(value(), "remesh: " + a, 1, 64));
+      r.metField = int(parseInteger(value(), "remesh: " + a, 1, 64));
     else if (a == "-hmin")
-      hmin = parseNumber(value(), "remesh: " + a);
+      r.hmin = number();
     else if (a == "-hsiz") {
-      hsiz = parseNumber(value(), "remesh: " + a);
-      ABLMG_REQUIRE(hsiz > 0, "remesh: -hsiz must be > 0, got " << hsiz);
+      r.hsiz = number();
+      ABLMG_REQUIRE(r.hsiz > 0, "remesh: -hsiz must be > 0, got " << r.hsiz);
     } else if (a == "-hmax")
-      hmax = parseNumber(value(), "remesh: " + a);
+      r.hmax = number();
     else if (a == "-hgrad")
-      hgrad = parseNumber(value(), "remesh: " + a);
+      r.hgrad = number();
     else if (a == "-v")
-      verbose = int(parseInteger(value(), "remesh: " + a, -1, 10));
+      r.verbose = int(parseInteger(value(), "remesh: " + a, -1, 10));
     else if (a == "--seed")
-      seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
+      r.seed = parseInteger(value(), "remesh: " + a, 0, std::numeric_limits<long long>::max());
     else if (a == "--lattice")
-      lattice = mesher::parseLatticeOrientation(value());
+      r.lattice = mesher::parseLatticeOrientation(value());
     else if (a == "--warm-start") {
       const std::string& w = value();
       ABLMG_REQUIRE(w == "auto" || w == "on" || w == "off",
                     "--warm-start: expected auto, on or off, got '" << w << "'");
-      warmStart = w == "on"    ? adapt::RemeshOptions::WarmStart::On
-                  : w == "off" ? adapt::RemeshOptions::WarmStart::Off
-                               : adapt::RemeshOptions::WarmStart::IfFits;
+      r.warmStart = w == "on"    ? adapt::RemeshOptions::WarmStart::On
+                    : w == "off" ? adapt::RemeshOptions::WarmStart::Off
+                                 : adapt::RemeshOptions::WarmStart::IfFits;
     } else if (a == "--report")
-      reportPath = value();
+      r.reportPath = value();
     else if (a == "--print-options" || a == "-val")
-      printOptions = true;
+      r.printOptions = true;
     else if (a == "-nosurf")
-      noSurf = true;
+      r.noSurf = true;
     else if (a == "--interior-loops") {
       const std::string v = value();
       ABLMG_REQUIRE(v == "holes" || v == "subdomains",
                     "remesh: --interior-loops must be holes or subdomains, got '" << v << "'");
-      interiorLoops = v == "holes" ? adapt::InteriorLoops::Holes : adapt::InteriorLoops::Subdomains;
+      r.interiorLoops = v == "holes" ? adapt::InteriorLoops::Holes : adapt::InteriorLoops::Subdomains;
     } else if (a == "--metric-quantum") {
-      metricQuantum = parseNumber(value(), "remesh: " + a);
-      ABLMG_REQUIRE(metricQuantum >= 0, "remesh: --metric-quantum must be >= 0 (0 = off), got " << metricQuantum);
+      r.metricQuantum = number();
+      ABLMG_REQUIRE(r.metricQuantum >= 0, "remesh: --metric-quantum must be >= 0 (0 = off), got " << r.metricQuantum);
     } else if (!a.empty() && a[0] == '-')
       ABLMG_REQUIRE(false, "unknown option '" << a << "' (see ablmg remesh --help)");
     else {
-      ABLMG_REQUIRE(in.empty(), "more than one input mesh ('" << in << "', '" << a << "')");
-      in = a;  // mmg2d also takes the input as a positional argument
+      ABLMG_REQUIRE(r.in.empty(), "more than one input mesh ('" << r.in << "', '" << a << "')");
+      r.in = a;  // mmg2d also takes the input as a positional argument
     }
   }
-  ABLMG_REQUIRE(!in.empty() || printOptions, "missing -in IN.mesh (see ablmg remesh --help)");
-  ABLMG_REQUIRE(hmin >= 0 && hmin < hmax, "need 0 <= hmin < hmax, got hmin " << hmin << ", hmax " << hmax);
-  ABLMG_REQUIRE(seed >= 0, "--seed must be >= 0");
-  const std::filesystem::path inPath(in);
-  if (sol.empty() && !in.empty()) sol = std::filesystem::path(in).replace_extension(".sol").string();
-  if (out.empty() && !in.empty()) out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
-  ABLMG_REQUIRE(printOptions || std::filesystem::path(out).extension() == ".mesh",
-                "-out '" << out << "' must end in .mesh");
-  const std::string outSol = out.empty() ? "" : std::filesystem::path(out).replace_extension(".sol").string();
-  ABLMG_REQUIRE(reportPath.empty() || (reportPath != out && reportPath != outSol),
+  ABLMG_REQUIRE(!r.in.empty() || r.printOptions, "missing -in IN.mesh (see ablmg remesh --help)");
+  ABLMG_REQUIRE(r.hmin >= 0 && r.hmin < r.hmax, "need 0 <= hmin < hmax, got hmin " << r.hmin << ", hmax " << r.hmax);
+  const std::filesystem::path inPath(r.in);
+  if (r.sol.empty() && !r.in.empty()) r.sol = std::filesystem::path(r.in).replace_extension(".sol").string();
+  if (r.out.empty() && !r.in.empty()) r.out = (inPath.parent_path() / (inPath.stem().string() + ".o.mesh")).string();
+  ABLMG_REQUIRE(r.printOptions || std::filesystem::path(r.out).extension() == ".mesh",
+                "-out '" << r.out << "' must end in .mesh");
+  r.outSol = r.out.empty() ? "" : std::filesystem::path(r.out).replace_extension(".sol").string();
+  ABLMG_REQUIRE(r.reportPath.empty() || (r.reportPath != r.out && r.reportPath != r.outSol),
                 "--report must not be the output mesh or .sol");
+  return r;
+}
 
+adapt::RemeshOptions remeshOptions(const RemeshArgs& a) {
   adapt::RemeshOptions options;  // plateau stop: see RemeshOptions::mesh and docs/method.md
-  options.interiorLoops = interiorLoops;
-  options.hmin = hmin;
-  options.hmax = hmax;
-  options.hgrad = hgrad;  // -1 (any value < 0) is "off" for both
-  options.name = in;
-  options.mesh.placement.seed = std::uint64_t(seed);
-  options.mesh.placement.lattice.orientation = lattice;
-  options.warmStart = warmStart;
-  options.metricQuantum = metricQuantum;
-  nlohmann::json resolved;
-  {
-    resolved = {{"in", in},
-                {"sol", sol},
-                {"out", out},
-                {"outSol", outSol},
-                {"hmin", hmin},
-                {"hmax", std::isfinite(hmax) ? nlohmann::json(hmax) : nlohmann::json("inf")},
-                {"hgrad", hgrad < 0 ? nlohmann::json("off") : nlohmann::json(hgrad)},
-                {"v", verbose},
-                {"warmStart", warmStart == adapt::RemeshOptions::WarmStart::On    ? "on"
-                              : warmStart == adapt::RemeshOptions::WarmStart::Off ? "off"
-                                                                                  : "auto"},
-                {"metField", metField},
-                {"hsiz", hsiz},
-                {"metricQuantum", metricQuantum},
-                {"interiorLoops", options.interiorLoops == adapt::InteriorLoops::Holes ? "holes" : "subdomains"},
-                {"options", meshOptionsToJson(options.mesh)},
-                {"nosurf", noSurf},
-                {"report", reportPath}};
-    if (printOptions) {
-      nlohmann::json own = resolved;
-      own.erase("options");
-      printEffectiveOptions("remesh", "remesh", options.mesh, own);
-      return 0;
-    }
-    if (verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
+  options.interiorLoops = a.interiorLoops;
+  options.hmin = a.hmin;
+  options.hmax = a.hmax;
+  options.hgrad = a.hgrad;  // -1 (any value < 0) is "off" for both
+  options.name = a.in;
+  options.mesh.placement.seed = std::uint64_t(a.seed);
+  options.mesh.placement.lattice.orientation = a.lattice;
+  options.warmStart = a.warmStart;
+  options.metricQuantum = a.metricQuantum;
+  return options;
+}
+
+/// The options in effect, as printed by -v 1 and --print-options and written to the report.
+nlohmann::json resolvedJson(const RemeshArgs& a, const adapt::RemeshOptions& options) {
+  using WarmStart = adapt::RemeshOptions::WarmStart;
+  return {{"in", a.in},
+          {"sol", a.sol},
+          {"out", a.out},
+          {"outSol", a.outSol},
+          {"hmin", a.hmin},
+          {"hmax", std::isfinite(a.hmax) ? nlohmann::json(a.hmax) : nlohmann::json("inf")},
+          {"hgrad", a.hgrad < 0 ? nlohmann::json("off") : nlohmann::json(a.hgrad)},
+          {"v", a.verbose},
+          {"warmStart", a.warmStart == WarmStart::On    ? "on"
+                        : a.warmStart == WarmStart::Off ? "off"
+                                                        : "auto"},
+          {"metField", a.metField},
+          {"hsiz", a.hsiz},
+          {"metricQuantum", a.metricQuantum},
+          {"interiorLoops", options.interiorLoops == adapt::InteriorLoops::Holes ? "holes" : "subdomains"},
+          {"options", meshOptionsToJson(options.mesh)},
+          {"nosurf", a.noSurf},
+          {"report", a.reportPath}};
+}
+
+/// Seconds of every stage, as the report and -v 2 give them.
+struct RemeshTimes {
+  double read = 0, write = 0;
+};
+
+void writeReport(const std::string& path, nlohmann::json report, const adapt::RemeshResult& r, int inVertices,
+                 const RemeshTimes& t) {
+  report["stats"] = meshStatsJson(r.stats);
+  report["stats"]["clampedMetrics"] = r.clampedMetrics;
+  report["stats"]["gradedMetrics"] = r.gradation.corrections;
+  report["stats"]["warmStarted"] = r.warmStarted;
+  report["stats"]["inputWithin10"] = r.inputWithin10;
+  report["inVertices"] = inVertices;
+  report["vertices"] = r.mesh.numVertices();
+  report["triangles"] = r.mesh.numTriangles();
+  report["seconds"] = {{"read", t.read + r.secondsClamp}, {"gradation", r.secondsGradation},
+                       {"domain", r.secondsDomain},       {"backgroundField", r.secondsBackgroundField},
+                       {"meshing", r.secondsMeshing},     {"write", t.write}};
+  report["quality"] = cli::qualityJson(mesher::meshQuality(r.mesh, r.metric));
+  io::writeFileAtomically(path, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
+}
+
+void printStageTimes(const adapt::RemeshResult& r, const RemeshTimes& t) {
+  const auto& p = r.stats.placement;
+  const auto& c = r.stats.connect;
+  const auto& q = r.stats.improve;
+  std::cout << "ablmg remesh: seconds: read " << t.read + r.secondsClamp << ", gradation " << r.secondsGradation
+            << ", domain " << r.secondsDomain << ", background field " << r.secondsBackgroundField << ", placement "
+            << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
+            << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
+            << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency "
+            << p.secondsAdjacency << ", population " << p.secondsPopulation << "), connection "
+            << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass " << q.seconds << " (q min "
+            << q.qMinBefore << " -> " << q.qMinAfter << ", " << q.swaps << " swaps, " << q.moves << " moves, "
+            << q.collapses << " collapses), validation " << r.stats.secondsValidate << ", write " << t.write << "\n";
+  std::cout << "ablmg remesh: " << (r.warmStarted ? "warm start" : "cold start (lattice)")
+            << ", input edges within 10 %: " << r.inputWithin10 << "\n";
+}
+
+int runRemesh(const std::vector<std::string>& argv) {
+  const RemeshArgs args = parseRemeshArgs(argv);
+  if (args.help) {
+    std::cout << kHelp;
+    return 0;
   }
-  ABLMG_REQUIRE(hgrad < 0 || hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << hgrad);
+  adapt::RemeshOptions options = remeshOptions(args);
+  const nlohmann::json resolved = resolvedJson(args, options);
+  if (args.printOptions) {
+    nlohmann::json own = resolved;
+    own.erase("options");
+    printEffectiveOptions("remesh", "remesh", options.mesh, own);
+    return 0;
+  }
+  if (args.verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
+  ABLMG_REQUIRE(args.hgrad < 0 || args.hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << args.hgrad);
 
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
-  ProgressLine progress("remesh", verbose == -1 ? 0 : verbose);
+  ProgressLine progress("remesh", args.verbose == -1 ? 0 : args.verbose);
   options.mesh.progress = progress.callback();
   progress.update({.stage = "read"});
+  RemeshTimes times;
   Stopwatch watch;
-  auto inputs = readInputs(in, sol, metField, verbose, hsiz);
-  const double secondsRead = watch.seconds();
+  auto inputs = readInputs(args.in, args.sol, args.metField, args.verbose, args.hsiz);
+  times.read = watch.seconds();
   const int inVertices = inputs.first.numVertices();
-  if (noSurf) adapt::requireBoundaryEdges(inputs.first);
+  if (args.noSurf) adapt::requireBoundaryEdges(inputs.first);
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
   const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
   progress.update({.stage = "write", .nodes = r.mesh.numVertices()});
   watch.restart();
-  io::writeMeshAndSol(out, r.mesh, outSol, r.metric);
+  io::writeMeshAndSol(args.out, r.mesh, args.outSol, r.metric);
   progress.clear();
-  const double secondsWrite = watch.seconds();
-  if (!reportPath.empty()) {
+  times.write = watch.seconds();
+  if (!args.reportPath.empty()) {
     try {
-      nlohmann::json report = resolved;
-      report["stats"] = meshStatsJson(r.stats);
-      report["stats"]["clampedMetrics"] = r.clampedMetrics;
-      report["stats"]["gradedMetrics"] = r.gradation.corrections;
-      report["stats"]["warmStarted"] = r.warmStarted;
-      report["stats"]["inputWithin10"] = r.inputWithin10;
-      report["inVertices"] = inVertices;
-      report["vertices"] = r.mesh.numVertices();
-      report["triangles"] = r.mesh.numTriangles();
-      report["seconds"] = {
-          {"read", secondsRead + r.secondsClamp},        {"gradation", r.secondsGradation}, {"domain", r.secondsDomain},
-          {"backgroundField", r.secondsBackgroundField}, {"meshing", r.secondsMeshing},     {"write", secondsWrite}};
-      report["quality"] = cli::qualityJson(mesher::meshQuality(r.mesh, r.metric));
-      io::writeFileAtomically(reportPath, [&](std::ostream& os) { os << report.dump(2) << "\n"; });
+      writeReport(args.reportPath, resolved, r, inVertices, times);
     } catch (...) {
-      std::remove(out.c_str());  // all or nothing
-      std::remove(outSol.c_str());
+      std::remove(args.out.c_str());  // all or nothing
+      std::remove(args.outSol.c_str());
       throw;
     }
   }
-  if (verbose >= 2) {
-    const auto& p = r.stats.placement;
-    const auto& c = r.stats.connect;
-    std::cout << "ablmg remesh: seconds: read " << secondsRead + r.secondsClamp << ", gradation " << r.secondsGradation
-              << ", domain " << r.secondsDomain << ", background field " << r.secondsBackgroundField << ", placement "
-              << p.secondsInitial + p.secondsDynamics + p.secondsAdjacency + p.secondsPopulation << " (initial "
-              << p.secondsInitial << ", dynamics " << p.secondsDynamics << " in " << p.steps << " steps"
-              << (p.stalled ? " (stalled)" : "") << (p.qualityPlateau ? " (quality plateau)" : "") << ", adjacency "
-              << p.secondsAdjacency << ", population " << p.secondsPopulation << "), connection "
-              << c.secondsLocalMeshes + c.secondsRepair << ", quality post-pass " << r.stats.improve.seconds
-              << " (q min " << r.stats.improve.qMinBefore << " -> " << r.stats.improve.qMinAfter << ", "
-              << r.stats.improve.swaps << " swaps, " << r.stats.improve.moves << " moves, " << r.stats.improve.collapses
-              << " collapses), validation " << r.stats.secondsValidate << ", write " << secondsWrite << "\n";
-    std::cout << "ablmg remesh: " << (r.warmStarted ? "warm start" : "cold start (lattice)")
-              << ", input edges within 10 %: " << r.inputWithin10 << "\n";
-  }
-  if (verbose >= 0)
+  if (args.verbose >= 2) printStageTimes(r, times);
+  if (args.verbose >= 0)
     std::cout << "ablmg remesh: " << inVertices << " -> " << r.mesh.numVertices() << " vertices, "
               << r.mesh.numTriangles() << " triangles in " << r.secondsMeshing << " s (" << r.clampedMetrics
               << " metrics clamped, " << r.gradation.corrections << " graded, " << r.stats.connect.repairedTriangles
-              << " repaired triangles) -> " << out << ", " << outSol << "\n";
+              << " repaired triangles) -> " << args.out << ", " << args.outSol << "\n";
   return 0;
 }
 

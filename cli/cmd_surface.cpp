@@ -165,12 +165,18 @@ SurfaceSetup loadSurfaceConfig(const std::string& path) {
   return s;
 }
 
-int runSurface(const std::vector<std::string>& args) {
+/// The command line, as parsed. seed < 0: not given (the config's, else 0).
+struct SurfaceArgs {
   std::string name, configPath, meshPath, vtuPath, stlPath, pngPath, png3dPath, jsonPath;
   double h = 0;
   long long seed = -1;
   int verbosity = 1;
-  bool printOptions = false;
+  bool help = false, list = false, printOptions = false;
+};
+
+/// Parses the flags and checks the output paths (before the long meshing); errors name the flag.
+SurfaceArgs parseSurfaceArgs(const std::vector<std::string>& args) {
+  SurfaceArgs r;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     const auto value = [&]() -> const std::string& {
@@ -178,70 +184,133 @@ int runSurface(const std::vector<std::string>& args) {
       return args[++i];
     };
     if (a == "-h" || a == "--help") {
-      std::cout << kHelp;
-      return 0;
+      r.help = true;
+      return r;
     } else if (a == "--list") {
-      for (const auto& line : mesher::builtinSurfaceList()) std::cout << line << "\n";
-      return 0;
+      r.list = true;
+      return r;
     } else if (a == "--surface") {
-      name = value();
+      r.name = value();
     } else if (a == "--h") {
-      h = parsePositiveNumber(value(), "surface: --h");
+      r.h = parsePositiveNumber(value(), "surface: --h");
     } else if (a == "-o") {
-      meshPath = value();
+      r.meshPath = value();
     } else if (a == "--vtu") {
-      vtuPath = value();
+      r.vtuPath = value();
     } else if (a == "--stl") {
-      stlPath = value();
+      r.stlPath = value();
     } else if (a == "--png-param") {
-      pngPath = value();
+      r.pngPath = value();
     } else if (a == "--png-3d") {
-      png3dPath = value();
+      r.png3dPath = value();
     } else if (a == "--json") {
-      jsonPath = value();
+      r.jsonPath = value();
     } else if (a == "-v") {
-      verbosity = int(parseInteger(value(), "surface: -v", 0, 10));
+      r.verbosity = int(parseInteger(value(), "surface: -v", 0, 10));
     } else if (a == "--seed") {
-      seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
+      r.seed = parseInteger(value(), "surface: --seed", 0, std::numeric_limits<long long>::max());
     } else if (a == "--print-options") {
-      printOptions = true;
-    } else if (!a.empty() && a[0] != '-' && configPath.empty()) {
-      configPath = a;
+      r.printOptions = true;
+    } else if (!a.empty() && a[0] != '-' && r.configPath.empty()) {
+      r.configPath = a;
     } else {
       ABLMG_REQUIRE(false, "surface: unknown argument '" << a << "' (see ablmg surface --help)");
     }
   }
-  ABLMG_REQUIRE(name.empty() != configPath.empty(),
+  ABLMG_REQUIRE(r.name.empty() != r.configPath.empty(),
                 "surface: give either --surface NAME or CONFIG.json (ablmg surface --list, --help)");
-  ABLMG_REQUIRE(printOptions || !meshPath.empty() || !vtuPath.empty() || !stlPath.empty() || !pngPath.empty() ||
-                    !png3dPath.empty() || !jsonPath.empty(),
+  ABLMG_REQUIRE(r.printOptions || !r.meshPath.empty() || !r.vtuPath.empty() || !r.stlPath.empty() ||
+                    !r.pngPath.empty() || !r.png3dPath.empty() || !r.jsonPath.empty(),
                 "surface: no output (give -o OUT.mesh, --vtu, --stl, --png-param, --png-3d or --json)");
-  if (!meshPath.empty()) checkOutput(meshPath, ".mesh", "-o");
-  if (!vtuPath.empty()) checkOutput(vtuPath, ".vtu", "--vtu");
-  if (!stlPath.empty()) checkOutput(stlPath, ".stl", "--stl");
-  if (!pngPath.empty()) checkOutput(pngPath, ".png", "--png-param");
-  if (!png3dPath.empty()) checkOutput(png3dPath, ".png", "--png-3d");
-  if (!jsonPath.empty()) checkOutput(jsonPath, ".json", "--json");
+  if (!r.meshPath.empty()) checkOutput(r.meshPath, ".mesh", "-o");
+  if (!r.vtuPath.empty()) checkOutput(r.vtuPath, ".vtu", "--vtu");
+  if (!r.stlPath.empty()) checkOutput(r.stlPath, ".stl", "--stl");
+  if (!r.pngPath.empty()) checkOutput(r.pngPath, ".png", "--png-param");
+  if (!r.png3dPath.empty()) checkOutput(r.png3dPath, ".png", "--png-3d");
+  if (!r.jsonPath.empty()) checkOutput(r.jsonPath, ".json", "--json");
+  return r;
+}
 
-  SurfaceSetup setup;
-  if (!configPath.empty()) {
-    setup = loadSurfaceConfig(configPath);
-  } else {
-    setup.name = name;
-    setup.surface = mesher::makeBuiltinSurface(name);
+/// What was meshed and measured, for the outputs and the summary.
+struct SurfaceOutcome {
+  mesher::MeshResult param;  ///< the (u,v) mesh
+  mesher::SurfaceMesh surface;
+  mesher::MeshQuality quality;
+  std::vector<double> alpha;  ///< Lee's quality per triangle
+  long boundaryEdges = 0, welded = 0;
+  double seconds = 0;
+};
+
+/// Writes every requested output, each atomically; on a failure removes those already written.
+std::vector<std::string> writeSurfaceOutputs(const SurfaceArgs& a, const SurfaceSetup& setup, const SurfaceOutcome& o,
+                                             const json& optionsEcho) {
+  const auto& s = o.surface;
+  std::vector<std::string> written;
+  try {
+    if (!a.meshPath.empty()) {
+      io::writeSurfaceMesh(a.meshPath, s.vertices, s.triangles);
+      written.push_back(a.meshPath);
+    }
+    if (!a.vtuPath.empty()) {
+      io::writeVtu(a.vtuPath, s.vertices, s.triangles, {}, {io::Field{"lee_quality", 1, o.alpha}});
+      written.push_back(a.vtuPath);
+    }
+    if (!a.stlPath.empty()) {
+      io::writeStl(a.stlPath, s.vertices, s.triangles, setup.name);
+      written.push_back(a.stlPath);
+    }
+    if (!a.pngPath.empty()) {
+      io::drawMesh(a.pngPath, o.param.mesh, o.alpha, "Lee quality");
+      written.push_back(a.pngPath);
+    }
+    if (!a.png3dPath.empty()) {
+      io::drawSurface(a.png3dPath, s.vertices, s.triangles);
+      written.push_back(a.png3dPath);
+    }
+    if (!a.jsonPath.empty()) {
+      const json j = {{"options", optionsEcho},
+                      {"seconds", o.seconds},
+                      {"quality", cli::qualityJson(o.quality)},
+                      {"boundary_edges", o.boundaryEdges},
+                      {"welded_vertices", o.welded},
+                      {"outputs", written}};
+      io::writeFileAtomically(a.jsonPath, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+      written.push_back(a.jsonPath);
+    }
+  } catch (...) {
+    for (const auto& w : written) std::remove(w.c_str());
+    throw;
   }
-  if (h > 0) setup.h = h;
-  if (seed >= 0) setup.seed = seed;
-  if (printOptions) {
-    setup.options.placement.seed = std::uint64_t(setup.seed);
-    printEffectiveOptions("surface", setup.preset, setup.options,
-                          {{"surface", setup.name}, {"h", setup.h}, {"config", configPath}});
+  return written;
+}
+
+int runSurface(const std::vector<std::string>& argv) {
+  const SurfaceArgs args = parseSurfaceArgs(argv);
+  if (args.help || args.list) {
+    if (args.help) std::cout << kHelp;
+    if (args.list)
+      for (const auto& line : mesher::builtinSurfaceList()) std::cout << line << "\n";
     return 0;
   }
-  ABLMG_REQUIRE(setup.h > 0, "surface: --h H is required" << (configPath.empty() ? "" : " (or \"h\" in the config)"));
+  SurfaceSetup setup;
+  if (!args.configPath.empty()) {
+    setup = loadSurfaceConfig(args.configPath);
+  } else {
+    setup.name = args.name;
+    setup.surface = mesher::makeBuiltinSurface(args.name);
+  }
+  if (args.h > 0) setup.h = args.h;
+  if (args.seed >= 0) setup.seed = args.seed;
+  setup.options.placement.seed = std::uint64_t(setup.seed);
+  if (args.printOptions) {
+    printEffectiveOptions("surface", setup.preset, setup.options,
+                          {{"surface", setup.name}, {"h", setup.h}, {"config", args.configPath}});
+    return 0;
+  }
+  ABLMG_REQUIRE(setup.h > 0,
+                "surface: --h H is required" << (args.configPath.empty() ? "" : " (or \"h\" in the config)"));
   const mesher::Metric3Field m3 = mesher::isotropicMetric3(setup.h);
   const mesher::InducedMetricField m2(*setup.surface, m3);
-  setup.options.placement.seed = std::uint64_t(setup.seed);
   const json optionsEcho = {{"surface", setup.name},
                             {"description", setup.surface->description()},
                             {"h", setup.h},
@@ -250,54 +319,27 @@ int runSurface(const std::vector<std::string>& args) {
   std::cout << "ablmg surface: options " << optionsEcho.dump() << "\n";
 
   // Mesh (u,v) with M2, map to 3D, measure.
-  ProgressLine progress("surface", verbosity);
+  ProgressLine progress("surface", args.verbosity);
   setup.options.progress = progress.callback();
   const Stopwatch watch;
-  const mesher::MeshResult r = mesher::meshDomain(setup.surface->parameterDomain(), m2, setup.options);
+  SurfaceOutcome o;
+  o.param = mesher::meshDomain(setup.surface->parameterDomain(), m2, setup.options);
   progress.clear();
-  const mesher::SurfaceMesh s = mesher::mapToSurface(r.mesh, *setup.surface);
-  const double seconds = watch.seconds();
-  const mesher::MeshQuality q = mesher::surfaceQuality(s, m3);
-  ABLMG_REQUIRE(q.valid, "surface: the 3D mesh is not a consistently oriented manifold: " << q.firstProblem);
-  const std::vector<double> alpha = mesher::leeQuality(s, m3);
-  const long boundaryEdges = mesher::countBoundaryEdges(s);
-  const long welded = long(r.mesh.numVertices()) - long(s.vertices.size());  // seam vertices merged (periodic surfaces)
+  o.surface = mesher::mapToSurface(o.param.mesh, *setup.surface);
+  o.seconds = watch.seconds();
+  o.quality = mesher::surfaceQuality(o.surface, m3);
+  ABLMG_REQUIRE(o.quality.valid,
+                "surface: the 3D mesh is not a consistently oriented manifold: " << o.quality.firstProblem);
+  o.alpha = mesher::leeQuality(o.surface, m3);
+  o.boundaryEdges = mesher::countBoundaryEdges(o.surface);
+  o.welded = long(o.param.mesh.numVertices()) - long(o.surface.vertices.size());  // seams merged (periodic)
 
-  std::vector<std::string> written;
-  try {
-    if (!meshPath.empty()) {
-      io::writeSurfaceMesh(meshPath, s.vertices, s.triangles);
-      written.push_back(meshPath);
-    }
-    if (!vtuPath.empty()) {
-      io::writeVtu(vtuPath, s.vertices, s.triangles, {}, {io::Field{"lee_quality", 1, alpha}});
-      written.push_back(vtuPath);
-    }
-    if (!stlPath.empty()) {
-      io::writeStl(stlPath, s.vertices, s.triangles, setup.name);
-      written.push_back(stlPath);
-    }
-    if (!pngPath.empty()) {
-      io::drawMesh(pngPath, r.mesh, alpha, "Lee quality");
-      written.push_back(pngPath);
-    }
-    if (!png3dPath.empty()) {
-      io::drawSurface(png3dPath, s.vertices, s.triangles);
-      written.push_back(png3dPath);
-    }
-    if (!jsonPath.empty()) {
-      json j = {{"options", optionsEcho},          {"seconds", seconds},        {"quality", cli::qualityJson(q)},
-                {"boundary_edges", boundaryEdges}, {"welded_vertices", welded}, {"outputs", written}};
-      io::writeFileAtomically(jsonPath, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
-      written.push_back(jsonPath);
-    }
-  } catch (...) {
-    for (const auto& w : written) std::remove(w.c_str());
-    throw;
-  }
+  const std::vector<std::string> written = writeSurfaceOutputs(args, setup, o, optionsEcho);
+  const auto& q = o.quality;
   std::cout << "ablmg surface: " << setup.name << ", h = " << setup.h << ": " << q.vertices << " vertices, "
-            << q.triangles << " triangles in " << seconds << " s; manifold: yes; boundary edges: " << boundaryEdges
-            << (welded > 0 ? "; seams welded: " + std::to_string(welded) + " vertices merged" : std::string()) << "\n"
+            << q.triangles << " triangles in " << o.seconds << " s; manifold: yes; boundary edges: " << o.boundaryEdges
+            << (o.welded > 0 ? "; seams welded: " + std::to_string(o.welded) + " vertices merged" : std::string())
+            << "\n"
             << mesher::toText(q);
   for (const auto& w : written) std::cout << "  -> " << w << "\n";
   return 0;

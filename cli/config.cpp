@@ -228,6 +228,90 @@ Domain applySlits(Domain d, const json& S, const Where& ws) {
   return d;
 }
 
+/// "rectangle": [x0, y0, x1, y1].
+Domain parseRectangle(const json& r, const Where& wr) {
+  requireType(r, r.is_array() && r.size() == 4, "[x0, y0, x1, y1]", wr);
+  double c[4];
+  for (int k = 0; k < 4; ++k) c[k] = getNumber(r[k], wr[k]);
+  ABLMG_REQUIRE(c[0] < c[2] && c[1] < c[3], wr.str() << ": need x0 < x1 and y0 < y1, got " << r.dump());
+  return Domain::rectangle(c[0], c[1], c[2], c[3]);
+}
+
+/// "disk": {"center": [x, y], "radius": r, "samples": n (default 2048)}.
+Domain parseDisk(const json& dj, const Where& wd) {
+  const json& d = requireObject(dj, wd);
+  checkKeys(d, {"center", "radius", "samples"}, wd);
+  ABLMG_REQUIRE(d.contains("center") && d.contains("radius"), wd.str() << ": needs center and radius");
+  const Vec2 c = getPoint(d["center"], wd / "center");
+  const double r = getNumber(d["radius"], wd / "radius");
+  ABLMG_REQUIRE(r > 0, (wd / "radius").str() << ": must be > 0, got " << r);
+  int samples = 2048;
+  if (d.contains("samples")) {
+    const Where ws = wd / "samples";
+    requireType(d["samples"], d["samples"].is_number_integer(), "integer", ws);
+    const long long n = d["samples"].get<long long>();
+    ABLMG_REQUIRE(n >= 8 && n <= 10'000'000, ws.str() << ": must be in [8, 1e7], got " << n);
+    samples = int(n);
+  }
+  return Domain::disk(c, r, samples);
+}
+
+/// "smooth": true/false for every loop, or one boolean per loop (outer first, then the holes).
+void applySmooth(const json& S, const Where& ws, std::vector<BoundaryLoop>& loops) {
+  if (S.is_boolean()) {
+    for (auto& loop : loops) loop.smooth = S.get<bool>();
+    return;
+  }
+  requireType(S, S.is_array() && S.size() == loops.size(), "boolean or one boolean per loop", ws);
+  for (std::size_t l = 0; l < S.size(); ++l) {
+    requireType(S[l], S[l].is_boolean(), "boolean", ws[l]);
+    loops[l].smooth = S[l].get<bool>();
+  }
+}
+
+/// "tags": one integer per loop, or per loop one integer per segment.
+void applyTags(const json& T, const Where& wt, std::vector<BoundaryLoop>& loops) {
+  requireType(T, T.is_array() && T.size() == loops.size(), "array with one entry per loop", wt);
+  for (std::size_t l = 0; l < T.size(); ++l) {
+    if (T[l].is_number_integer()) {
+      loops[l].tags.assign(loops[l].points.size(), T[l].get<int>());
+      continue;
+    }
+    requireType(T[l], T[l].is_array() && T[l].size() == loops[l].points.size(), "integer or one integer per segment",
+                wt[l]);
+    for (std::size_t k = 0; k < T[l].size(); ++k) {
+      requireType(T[l][k], T[l][k].is_number_integer(), "integer", wt[l][k]);
+      loops[l].tags.push_back(T[l][k].get<int>());
+    }
+  }
+}
+
+/// The outer loop first, then the holes.
+Domain domainOfLoops(std::vector<BoundaryLoop> loops) {
+  BoundaryLoop outer = std::move(loops.front());
+  loops.erase(loops.begin());
+  return Domain(std::move(outer), std::move(loops));
+}
+
+/// "loops": [[[x, y], ...], ...] with optional "tags" and "smooth".
+Domain parseLoops(const json& j, const Where& w) {
+  const Where wl = w / "loops";
+  const json& L = j["loops"];
+  requireType(L, L.is_array() && !L.empty(), "non-empty array of loops", wl);
+  std::vector<BoundaryLoop> loops;
+  for (std::size_t l = 0; l < L.size(); ++l) {
+    requireType(L[l], L[l].is_array() && L[l].size() >= 3, "array of ≥ 3 points [x, y]", wl[l]);
+    BoundaryLoop loop;
+    for (std::size_t k = 0; k < L[l].size(); ++k) loop.points.push_back(getPoint(L[l][k], wl[l][k]));
+    loops.push_back(std::move(loop));
+  }
+  if (j.contains("tags")) applyTags(j["tags"], w / "tags", loops);
+  if (j.contains("smooth")) applySmooth(j["smooth"], w / "smooth", loops);
+  try {
+    return domainOfLoops(std::move(loops));
+  } catch (const InputError& e) { throw InputError(wl.str() + ": " + e.what()); }
+}
+
 Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
   requireObject(j, w);
   ABLMG_REQUIRE(!j.empty(), w.str() << ": empty; expected one of rectangle, disk, poly, loops");
@@ -238,93 +322,23 @@ Domain parseDomain(const json& j, const Where& w, const std::string& baseDir) {
   }
   if (j.contains("rectangle")) {
     checkKeys(j, {"rectangle"}, w);
-    const Where wr = w / "rectangle";
-    const json& r = j["rectangle"];
-    requireType(r, r.is_array() && r.size() == 4, "[x0, y0, x1, y1]", wr);
-    double c[4];
-    for (int k = 0; k < 4; ++k) c[k] = getNumber(r[k], wr[k]);
-    ABLMG_REQUIRE(c[0] < c[2] && c[1] < c[3], wr.str() << ": need x0 < x1 and y0 < y1, got " << r.dump());
-    return Domain::rectangle(c[0], c[1], c[2], c[3]);
+    return parseRectangle(j["rectangle"], w / "rectangle");
   }
   if (j.contains("disk")) {
     checkKeys(j, {"disk"}, w);
-    const Where wd = w / "disk";
-    const json& d = requireObject(j["disk"], wd);
-    checkKeys(d, {"center", "radius", "samples"}, wd);
-    ABLMG_REQUIRE(d.contains("center") && d.contains("radius"), wd.str() << ": needs center and radius");
-    const Vec2 c = getPoint(d["center"], wd / "center");
-    const double r = getNumber(d["radius"], wd / "radius");
-    ABLMG_REQUIRE(r > 0, (wd / "radius").str() << ": must be > 0, got " << r);
-    int samples = 2048;
-    if (d.contains("samples")) {
-      const Where ws = wd / "samples";
-      requireType(d["samples"], d["samples"].is_number_integer(), "integer", ws);
-      const long long n = d["samples"].get<long long>();
-      ABLMG_REQUIRE(n >= 8 && n <= 10'000'000, ws.str() << ": must be in [8, 1e7], got " << n);
-      samples = int(n);
-    }
-    return Domain::disk(c, r, samples);
+    return parseDisk(j["disk"], w / "disk");
   }
-  // "smooth": true/false for every loop, or one boolean per loop (outer first, then the holes).
-  const auto applySmooth = [&](std::vector<BoundaryLoop>& loops) {
-    if (!j.contains("smooth")) return;
-    const Where ws = w / "smooth";
-    const json& S = j["smooth"];
-    if (S.is_boolean()) {
-      for (auto& loop : loops) loop.smooth = S.get<bool>();
-    } else {
-      requireType(S, S.is_array() && S.size() == loops.size(), "boolean or one boolean per loop", ws);
-      for (std::size_t l = 0; l < S.size(); ++l) {
-        requireType(S[l], S[l].is_boolean(), "boolean", ws[l]);
-        loops[l].smooth = S[l].get<bool>();
-      }
-    }
-  };
   if (j.contains("poly")) {
     checkKeys(j, {"poly", "smooth"}, w);
     Domain d = io::readPoly(resolve(getString(j["poly"], w / "poly"), baseDir));
     if (!j.contains("smooth")) return d;
     std::vector<BoundaryLoop> loops = d.loops();
-    applySmooth(loops);
-    BoundaryLoop outer = std::move(loops.front());
-    loops.erase(loops.begin());
-    return Domain(std::move(outer), std::move(loops));
+    applySmooth(j["smooth"], w / "smooth", loops);
+    return domainOfLoops(std::move(loops));
   }
   if (j.contains("loops")) {
     checkKeys(j, {"loops", "tags", "smooth"}, w);
-    const Where wl = w / "loops";
-    const json& L = j["loops"];
-    requireType(L, L.is_array() && !L.empty(), "non-empty array of loops", wl);
-    std::vector<BoundaryLoop> loops;
-    for (std::size_t l = 0; l < L.size(); ++l) {
-      requireType(L[l], L[l].is_array() && L[l].size() >= 3, "array of ≥ 3 points [x, y]", wl[l]);
-      BoundaryLoop loop;
-      for (std::size_t k = 0; k < L[l].size(); ++k) loop.points.push_back(getPoint(L[l][k], wl[l][k]));
-      loops.push_back(std::move(loop));
-    }
-    if (j.contains("tags")) {
-      const Where wt = w / "tags";
-      const json& T = j["tags"];
-      requireType(T, T.is_array() && T.size() == L.size(), "array with one entry per loop", wt);
-      for (std::size_t l = 0; l < T.size(); ++l) {
-        if (T[l].is_number_integer()) {
-          loops[l].tags.assign(loops[l].points.size(), T[l].get<int>());
-        } else {
-          requireType(T[l], T[l].is_array() && T[l].size() == loops[l].points.size(),
-                      "integer or one integer per segment", wt[l]);
-          for (std::size_t k = 0; k < T[l].size(); ++k) {
-            requireType(T[l][k], T[l][k].is_number_integer(), "integer", wt[l][k]);
-            loops[l].tags.push_back(T[l][k].get<int>());
-          }
-        }
-      }
-    }
-    applySmooth(loops);
-    BoundaryLoop outer = std::move(loops.front());
-    loops.erase(loops.begin());
-    try {
-      return Domain(std::move(outer), std::move(loops));
-    } catch (const InputError& e) { throw InputError(wl.str() + ": " + e.what()); }
+    return parseLoops(j, w);
   }
   ABLMG_REQUIRE(false, (w / j.begin().key()).str() << ": unknown key (expected one of rectangle, disk, poly, loops)");
   return {};

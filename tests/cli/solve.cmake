@@ -35,6 +35,11 @@ foreach(case
     "pure_neumann|{\"mesh\": {\"structured\": {\"nx\": 8}, \"domain\": [0, 0, 1, 1]}, \"problem\": {\"f\": \"1\"}, OUT}|singular"
     "negative_kappa|{\"mesh\": {\"structured\": {\"nx\": 8}, \"domain\": [0, 0, 1, 1]}, \"problem\": {\"kappa\": \"x-0.5\", \"dirichlet\": {\"default\": 0}}, OUT}|kappa = -"
     "missing_mesh_file|{\"mesh\": \"no_such.mesh\", \"problem\": \"peak\", OUT}|no_such.mesh"
+    "domain_not_numbers|{\"mesh\": {\"structured\": {\"nx\": 8}, \"domain\": [\"a\", 0, 1, 1]}, \"problem\": \"peak\", OUT}|mesh.domain: expected \\[x0, y0, x1, y1\\] \\(numbers\\)"
+    "domain_inverted|{\"mesh\": {\"structured\": {\"nx\": 8}, \"domain\": [1, 0, 0, 1]}, \"problem\": \"peak\", OUT}|mesh.domain: need x0 < x1"
+    "nx_not_integer|{\"mesh\": {\"structured\": {\"nx\": 2.5}}, \"problem\": \"peak\", OUT}|mesh.structured.nx: expected an integer"
+    "absurd_size|{\"mesh\": {\"structured\": {\"nx\": 100000}}, \"problem\": \"peak\", OUT}|mesh.structured: nx × ny"
+    "ordering_not_string|{\"mesh\": {\"structured\": {\"nx\": 8}}, \"problem\": \"peak\", \"solver\": {\"ordering\": 1}, OUT}|solver.ordering: expected a string"
     "invalid_json|{\"mesh\": |invalid JSON")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)
