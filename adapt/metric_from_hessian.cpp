@@ -59,27 +59,31 @@ bool wallFlip(const Vec2& pos, const Vec2& wall) {
 }  // namespace
 
 namespace {
-/// Per vertex: 0 interior, 1 on a straight (turn ≤ 20°) stretch of the boundary, 2 at a corner;
-/// `tangent` gets the mean unit tangent of its boundary edges.
+/// Per vertex: 0 interior, 1 on a straight (turn ≤ 20°) stretch of the boundary, 2 at a convex
+/// corner, 3 at a reentrant one (interior angle > π: the boundary turns right, the domain being on
+/// its left, or turns back on itself as at a slit's tip); `tangent` gets the mean unit tangent of
+/// the boundary edges at kind-1 vertices (0 elsewhere).
 std::vector<char> boundaryKinds(const Mesh2& mesh, std::vector<Vec2>& tangent) {
   const int n = mesh.numVertices();
-  std::vector<char> kind(n, 0);
-  std::vector<Vec2> first(n, Vec2::Zero());
-  tangent.assign(n, Vec2::Zero());
-  const double cosTurn = std::cos(20 * std::numbers::pi / 180);
+  std::vector<Vec2> in(n, Vec2::Zero()), out(n, Vec2::Zero());
   for (const auto& e : mesh.boundaryEdges) {
     const Vec2 d = (mesh.vertices[e.b] - mesh.vertices[e.a]).normalized();
-    for (const int v : {e.a, e.b}) {
-      if (kind[v] == 0) {
-        kind[v] = 1;
-        first[v] = d;
-      } else if (first[v].dot(d) < cosTurn) {
-        kind[v] = 2;
-      }
-      tangent[v] += d;
+    out[e.a] = d;
+    in[e.b] = d;
+  }
+  std::vector<char> kind(n, 0);
+  tangent.assign(n, Vec2::Zero());
+  const double cosTurn = std::cos(20 * std::numbers::pi / 180);
+  for (int v = 0; v < n; ++v) {
+    if (in[v].squaredNorm() == 0 && out[v].squaredNorm() == 0) continue;
+    const double dot = in[v].dot(out[v]), cross = in[v].x() * out[v].y() - in[v].y() * out[v].x();
+    if (in[v].squaredNorm() == 0 || out[v].squaredNorm() == 0 || dot >= cosTurn) {
+      kind[v] = 1;
+      tangent[v] = (in[v] + out[v]).normalized();
+    } else {
+      kind[v] = cross < 0 || dot < -0.99 ? 3 : 2;
     }
   }
-  for (int v = 0; v < n; ++v) tangent[v] = kind[v] == 1 ? tangent[v].normalized() : Vec2::Zero();
   return kind;
 }
 }  // namespace
@@ -99,14 +103,14 @@ int gradeSingularCorners(const Mesh2& mesh, std::vector<Metric2>& metric, double
   const std::vector<char> kind = boundaryKinds(mesh, tangent);
   std::vector<std::vector<int>> adj(n);
   bool any = false;
-  for (int v = 0; v < n; ++v) any = any || kind[v] == 2;
+  for (int v = 0; v < n; ++v) any = any || kind[v] == 3;
   if (!any) return 0;
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) adj[t[k]].push_back(t[(k + 1) % 3]), adj[t[(k + 1) % 3]].push_back(t[k]);
   std::vector<int> seen(n, -1);
   int graded = 0;
   for (int c = 0; c < n; ++c) {
-    if (kind[c] != 2) continue;
+    if (kind[c] != 3) continue;
     // Rings 3–6 around c (the inner rings' recovered Hessians are patch averages over the
     // corner): log h against log r, h = det(M)^(−1/4).
     std::vector<int> ring{c}, all;

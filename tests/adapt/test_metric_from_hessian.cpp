@@ -3,6 +3,7 @@
 #include "ablmg/adapt/metric_from_hessian.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -378,15 +379,16 @@ TEST(MetricFromHessian, WallTangentsAreZeroInsideAndAtCorners) {
 }
 
 TEST(MetricFromHessian, SingularCornerGradingEndsTheGrading) {
-  // Sizes h = A r^σ around the corner (0, 0) (σ = ⅔: u ~ r^(2/3)), the corner's own size hc:
-  // the grading's end is r* = A^(1/(1−σ)) = A³, and the corner gets max(β r*, hc/4); the other
-  // corners (sizes nearly constant around them) and every other vertex keep their metric.
-  const Mesh2 mesh = fem::unitSquareMesh(40);
+  // L-shape, sizes h = A |x − x0|^σ (σ = ⅔: u ~ r^(2/3)) around x0, the corner's own size hc.
+  // x0 = (0, 0), the reentrant corner: the grading's end is r* = A^(1/(1−σ)) = A³, and the corner
+  // gets max(β r*, hc/4); every other vertex keeps its metric. x0 = (−1, −1), a convex corner:
+  // nothing changes (no singularity there for smooth data).
+  const Mesh2 mesh = fem::structuredMesh(fem::makeProblem("lshape").domain, 40, 40);
   const double a = 0.05, sigma = 2.0 / 3, rStar = a * a * a, beta = 0.25;
-  const auto field = [&](double hc) {
+  const auto field = [&](Vec2 x0, double hc) {
     std::vector<Metric2> m(mesh.numVertices());
     for (int v = 0; v < mesh.numVertices(); ++v) {
-      const double r = mesh.vertices[v].norm();
+      const double r = (mesh.vertices[v] - x0).norm();
       m[v] = Metric2::isotropic(r > 0 ? a * std::pow(r, sigma) : hc);
     }
     return m;
@@ -397,7 +399,7 @@ TEST(MetricFromHessian, SingularCornerGradingEndsTheGrading) {
     if (mesh.vertices[v].norm() == 0) corner = v;
   ASSERT_GE(corner, 0);
   for (const double hc : {5e-5, 1e-3}) {
-    auto m = field(hc);
+    auto m = field(Vec2::Zero(), hc);
     const auto before = m;
     EXPECT_EQ(gradeSingularCorners(mesh, m, beta, 0), 1);
     EXPECT_NEAR(size(m[corner]) / std::max(beta * rStar, 0.25 * hc), 1, 1e-6) << hc;
@@ -406,7 +408,9 @@ TEST(MetricFromHessian, SingularCornerGradingEndsTheGrading) {
       EXPECT_EQ(size(m[v]), size(before[v]));
     }
   }
-  auto fine = field(1e-5);  // already below β r*: unchanged
+  auto fine = field(Vec2::Zero(), 1e-5);  // already below β r*: unchanged
   EXPECT_EQ(gradeSingularCorners(mesh, fine, beta, 0), 0);
+  auto convex = field(Vec2(-1, -1), 1e-3);
+  EXPECT_EQ(gradeSingularCorners(mesh, convex, beta, 0), 0);
   EXPECT_THROW(gradeSingularCorners(mesh, fine, 0, 0), InputError);
 }
