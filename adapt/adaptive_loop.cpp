@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace ablmg::adapt {
 void validate(const AdaptOptions& o) {
@@ -27,6 +28,11 @@ void validate(const AdaptOptions& o) {
                                                                                            << o.l2Share << ")");
   ABLMG_REQUIRE(o.dualWeight >= 0 && std::isfinite(o.dualWeight),
                 "adapt options: dualWeight must be >= 0 (got " << o.dualWeight << ")");
+  ABLMG_REQUIRE(o.repeatMinChange >= 0 && o.stopRepeatMinChange >= 0 && std::isfinite(o.stopRepeatMinChange),
+                "adapt options: repeatMinChange and stopRepeatMinChange must be >= 0 (got "
+                    << o.repeatMinChange << " and " << o.stopRepeatMinChange << ")");
+  ABLMG_REQUIRE(std::isfinite(o.stopSizeAim) && o.stopSizeAim <= 1,
+                "adapt options: stopSizeAim must be <= 1 (<= 0: off), got " << o.stopSizeAim);
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
                 "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
   MetricOptions m = o.metric;
@@ -172,20 +178,64 @@ namespace {
 void reportStage(const AdaptOptions& options, const char* stage, int cycle, int cycles, long vertices) {
   if (options.progress) options.progress({.stage = stage, .nodes = vertices, .cycle = cycle, .cycles = cycles});
 }
+/// The threshold of repeatsToSkip: repeatMinChange, or with a stop criterion and
+/// repeatMinChange 0, stopRepeatMinChange.
+double repeatThreshold(const AdaptOptions& o) {
+  return o.repeatMinChange > 0 || !(o.stopL2 > 0 || o.stopH1 > 0) ? o.repeatMinChange : o.stopRepeatMinChange;
+}
+
 /// Where the schedule goes on after position s: the last repeat of target(s) (so that the next
 /// cycle is the next size) when target(s + 1) repeats target(s) and the metric changed by less
-/// than options.repeatMinChange; s otherwise. The last size's repeats are never skipped past the
-/// schedule's end (the last position stays the last cycle).
-int repeatsToSkip(const AdaptOptions& options, int s, int cycles, double change) {
-  if (!(options.repeatMinChange > 0) || !(change < options.repeatMinChange)) return s;
-  auto target = [&](int k) {
-    return options.targetVertices[std::min<std::size_t>(std::size_t(k), options.targetVertices.size() - 1)];
-  };
+/// than repeatThreshold(options); s otherwise. The last size's repeats are never skipped past
+/// the schedule's end (the last position stays the last cycle).
+int repeatsToSkip(const AdaptOptions& options, const std::vector<double>& targets, int s, double change) {
+  const double threshold = repeatThreshold(options);
+  if (!(threshold > 0) || !(change < threshold)) return s;
+  const int cycles = int(targets.size());
   int j = s;
-  while (j + 1 < cycles && target(j + 1) == target(s)) ++j;
+  while (j + 1 < cycles && targets[std::size_t(j) + 1] == targets[std::size_t(s)]) ++j;
   // Skip to the last repeat only when a larger size follows; otherwise keep one more pass at
   // this, the final, size so that the loop still ends on a mesh adapted at it.
   return j + 1 < cycles ? j : s;
+}
+
+/// One target per cycle: options.targetVertices, the last repeated up to options.cycles.
+std::vector<double> cycleTargets(const AdaptOptions& options) {
+  std::vector<double> targets = options.targetVertices;
+  if (options.cycles > 0) targets.resize(std::size_t(options.cycles), options.targetVertices.back());
+  return targets;
+}
+
+/// AdaptOptions::stopSizeAim: when cycle `row` is the last pass of its size (position s of
+/// `targets`), the next size and its passes become the predicted size for the stop criteria
+/// if that is below the schedule's next size; when those passes end the schedule, its final
+/// size follows them (for a miss). `cycles`: the rows before `row`.
+void aimAtStop(const AdaptOptions& options, const std::vector<CycleReport>& cycles, const CycleReport& row,
+               std::vector<double>& targets, int s) {
+  const std::size_t next = std::size_t(s) + 1;
+  if (!(options.stopSizeAim > 0) || next >= targets.size() || targets[next] == targets[std::size_t(s)]) return;
+  // The previous size's last pass: the latest earlier row of another target.
+  const CycleReport* previous = nullptr;
+  for (auto it = cycles.rbegin(); it != cycles.rend() && !previous; ++it)
+    if (it->targetVertices != row.targetVertices) previous = &*it;
+  if (!previous) return;
+  double size = 0;
+  bool predicted = false;
+  for (const auto& [stop, e0, e1, rate] : {std::tuple{options.stopL2, previous->l2, row.l2, -1.0},
+                                           std::tuple{options.stopH1, previous->h1, row.h1, -0.5}}) {
+    if (!(stop > 0)) continue;
+    const double n =
+        verticesForError(double(previous->vertices), e0, double(row.vertices), e1, options.stopSizeAim * stop, rate);
+    if (!std::isfinite(n)) return;  // one criterion cannot be predicted: keep the schedule
+    size = std::max(size, n);
+    predicted = true;
+  }
+  size = std::round(std::max(size, 1.1 * double(row.vertices)));
+  if (!predicted || !(size < targets[next])) return;
+  const double old = targets[next];
+  std::size_t j = next;
+  for (; j < targets.size() && targets[j] == old; ++j) targets[j] = size;
+  if (j == targets.size()) targets.push_back(old);
 }
 
 /// The convergence curve (the last cycle of each target size) and its log-log rates over the
@@ -223,16 +273,26 @@ void fitRates(AdaptReport& report, bool exact) {
 }
 }  // namespace
 
+double verticesForError(double n0, double e0, double n1, double e1, double target, double optimalRate) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  for (const double x : {n0, e0, n1, e1, target})
+    if (!(x > 0) || !std::isfinite(x)) return kNaN;
+  if (!(n0 < n1) || !(optimalRate < 0)) return kNaN;
+  const double rate = std::max(std::log(e1 / e0) / std::log(n1 / n0), optimalRate);
+  if (!(rate < -0.05)) return kNaN;
+  return n1 * std::pow(target / e1, 1 / rate);
+}
+
 AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& options,
                             const std::function<void(const CycleData&)>& onCycle) {
   validate(options);
   requireMeshIndependent(problem);
   ABLMG_REQUIRE(problem.exact || (options.stopL2 <= 0 && options.stopH1 <= 0),
                 "adapt options: stopL2/stopH1 need the exact solution, and this problem has none");
-  const int cycles = options.cycles > 0 ? options.cycles : int(options.targetVertices.size());
-  auto target = [&](int k) {
-    return options.targetVertices[std::min<std::size_t>(k, options.targetVertices.size() - 1)];
-  };
+  // The schedule, one target per cycle; aimAtStop may lower its sizes and add a cycle.
+  std::vector<double> targets = cycleTargets(options);
+  int cycles = int(targets.size());
+  auto target = [&](int k) { return targets[std::size_t(k)]; };
   const fem::PoissonProblem& poisson = problem.pde;
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -287,12 +347,17 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
       reportStage(options, "metric", s, cycles, row.vertices);
+      const bool aim = options.stopL2 > 0 || options.stopH1 > 0;
+      if (aim) aimAtStop(options, report.cycles, row, targets, s);
+      cycles = int(targets.size());
       const DualCorrection dual = dualCorrection(current.mesh, sol.u, poisson, options);
       AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);
       row.metricChange = metricChange(current.metric, a.metric);
-      const int skipTo = repeatsToSkip(options, s, cycles, row.metricChange);
+      const int skipTo = repeatsToSkip(options, targets, s, row.metricChange);
       if (skipTo > s) {
         s = skipTo;
+        if (aim) aimAtStop(options, report.cycles, row, targets, s);
+        cycles = int(targets.size());
         if (target(s + 1) != target(s))
           a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);
       }

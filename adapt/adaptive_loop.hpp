@@ -106,11 +106,27 @@ struct AdaptOptions {
   /// built by the mesher from the per-vertex lattice rows the loop hands over with the metric):
   /// the corners' H1 0.96 → 0.91× FreeFem's, their L2 0.83–0.93 → 0.75–0.82×, the others within
   /// ±0.03 (measurements there).
+  ///
+  /// maxAnisotropy 10⁵ (MetricOptions' own default is 10⁴). Where u varies in one direction only
+  /// (a straight layer: u_xx = 0) the Hessian sets no long size, and the cap is what sets it: at
+  /// 10⁴ the layer's triangles were 0.1 × 10⁻⁵, and its FE L2 error stalled at 30–100× the
+  /// interpolation error, a smooth error exported into the flat region beside the layer (77 % of
+  /// L2² at distance ≥ 0.04 from it, 1.4·10⁴ vertices): the layer's L2 rate over the last four
+  /// sizes −0.53 (to 3.6·10⁴ vertices) and −0.38 (to 9.5·10⁴). At 10⁵ the long size reaches hmax
+  /// (the layer is meshed as rows across the domain, like the 1-d problem it is): −1.10 and
+  /// −1.02, the final L2 error 6.8× and the H1 error 2.4× lower at 10⁵ vertices, the worst H1
+  /// ratio to FreeFem++ 0.54 → 0.46. No other problem of the library reaches the cap (their
+  /// errors are unchanged to the last digit; `examples/compare_freefem/run.sh --problem all
+  /// --maxnv 4e4`). Capping the long size instead (hmax 0.05 or the far-field floor hmaxUniform)
+  /// raises the layer's L2 error 10–40×. Cost: the sides crossing the layer carry one vertex per
+  /// row of its triangles, so its meshes have 8–11 % more vertices (+1–2 % triangles; the
+  /// complexity does not count boundary vertices) and its loop +9 % CPU (docs/experiments.md).
   MetricOptions metric = [] {
     MetricOptions m;
     m.p = std::numeric_limits<double>::infinity();
     m.shapeBlend = 0.05;
     m.saddleShape = 1;
+    m.maxAnisotropy = 1e5;
     return m;
   }();
   /// > 1: gradation (gradation.hpp); ≤ 0: off. Default 1.25: without it the metric of a
@@ -158,12 +174,17 @@ struct AdaptOptions {
   /// with the aspect ratio the Hessian of u allows; M(z) bounds h_long where z is curved.
   /// Default 0.01 (measured in dual_weight.hpp); 0 = off (no dual Hessian recovery).
   double dualShare = 0.01;
-  /// β ∈ [0, 1] (0: off): singular grading at the corners of the boundary, after the metric and
+  /// β ∈ [0, 1] (0: off): singular grading at reentrant corners of the boundary, after the metric and
   /// before gradation (gradeSingularCorners in metric_from_hessian.hpp: the corner's size
   /// becomes max(β r*, hc/4) where the sizes around it follow h = A r^σ, r* = A^(1/(1−σ))).
   /// Default ¼: the L-shape's H1 ratio to FreeFem++ 0.901 → 0.890 at 7.9·10³ vertices, the
   /// share of H1² within 10⁻⁴ of the corner 1.7 → 0.2 % (measurements there).
   double cornerGrading = 0.25;
+  /// With dualShare > 0: the dual's Hessians are weighted per vertex by |tr H_u| (the recovered
+  /// Laplacian of u_h) before their metric is built, M(|Δu_h| |H_z|; φ_z N) (adapt/dual_weight.hpp,
+  /// "Goal weighting"): the dual's curvature bounds the long size only where ∇(u − Πu) is large.
+  /// false (default): M(H_z; φ_z N).
+  bool dualGoal = false;
   /// The mesher's options for the loop: the Adapt preset (mesher/mesher.hpp: lattice along the
   /// short-size direction, plateau stop, no defect annealing; the reasons are there).
   mesher::MeshOptions mesh = mesher::meshPreset(mesher::MeshPreset::Adapt);
@@ -171,6 +192,24 @@ struct AdaptOptions {
   int errorDegree = 8;  ///< quadrature degree of the error norms (fem/error_norms.hpp)
   /// Stop criteria (≤ 0: off): the loop ends after the first cycle whose error is at most this.
   double stopL2 = 0, stopH1 = 0;
+  /// With a stop criterion, the sizes are chosen to reach it at least cost (stopSizeAim in
+  /// (0, 1]; ≤ 0: off, the schedule runs as given): after the last pass of each size, the
+  /// error curve through the last two sizes (log–log) predicts the N at which each error with
+  /// a stop reaches stopSizeAim × its target (the rate used is the fitted one or the optimal
+  /// one, L2 N^(−1), H1 N^(−1/2), whichever is shallower, so that a pre-asymptotic steep rate
+  /// does not promise too much). When that N (the largest over the criteria, at least 1.1 ×
+  /// the current N) is below the schedule's next size, the next size becomes N, with the
+  /// passes the schedule had there; the schedule after it is kept for a miss, where the next
+  /// prediction starts from the new point (a lowered final size is followed by the original
+  /// one). Without it the run goes on to whole sizes of the schedule and ends on the first one
+  /// that reaches the target: with a doubling schedule the last mesh has up to 2× the vertices
+  /// needed. Measured with stopRepeatMinChange (below) on `ablmg adapt --vertices 2N --stop-h1
+  /// E` (examples/compare_freefem/run.sh's time to accuracy, N and E FreeFem++'s final at
+  /// --maxnv 4e4, every pass run): the last mesh 8–22 % smaller (wave front 22 %, layer 19 %,
+  /// line singularity 17 %, multiple 16 %, peak 14 %, the corners 8–9 %), its H1 error 0.93–0.95
+  /// E instead of 0.75–0.92 E (the layer 0.85: its rate is steeper than the −1/2 used); no run
+  /// missed (needed a further size); the steep front reaches E on a scheduled size (7·10³).
+  double stopSizeAim = 0.95;
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
   /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
   bool warmStart = false;
@@ -188,6 +227,18 @@ struct AdaptOptions {
   /// 0.2–0.8 where the passes still find a feature (steep front to 4·10³, tanh layer to 5·10³,
   /// multiple to 2·10³ vertices), with H1 errors falling by 15–60 % per pass.
   double repeatMinChange = 0;
+  /// repeatMinChange for a run with a stop criterion (stopL2/stopH1) whose repeatMinChange is
+  /// 0: there only the error of the last cycle counts, and what the repeats at the small sizes
+  /// add (the grading at a singular point, ≤ 9 % of H1 at the intermediate sizes, see above)
+  /// the larger sizes build anyway. The passes that still find a feature (metricChange 0.3–1 on
+  /// the steep front and the layer up to 4·10³–5·10³ vertices, errors falling by 15–60 % per
+  /// pass) are kept. Measured on the runs of stopSizeAim above, Σ N_k of the whole run, all
+  /// passes → 0.2: L-shape 9.1 → 6.1·10⁴, 5π/4 9.1 → 6.1·10⁴, slit 9.9 → 6.8·10⁴, peak 10.4 →
+  /// 6.9·10⁴, multiple 6.5 → 4.5·10⁴, layer 7.2 → 4.7·10⁴, steep front unchanged (2.7·10⁴),
+  /// each with the same last mesh to ±2 %; 0.06 leaves the layer's, the peak's and multiple's
+  /// repeats on (their dM stays at 0.07–0.3), one pass everywhere (no repeats) puts the steep
+  /// front's last mesh at 1.8·10⁴ vertices instead of 7·10³. 0: every pass runs.
+  double stopRepeatMinChange = 0.2;
   /// Called at each stage of each cycle (solve, recover, metric, and the mesher's stages and
   /// placement steps), with Progress::cycle and cycles set (core/progress.hpp); empty: none.
   /// The results do not depend on it.
@@ -196,6 +247,13 @@ struct AdaptOptions {
 
 /// Throws InputError naming the field and value.
 void validate(const AdaptOptions& options);
+
+/// The vertex count at which an error falling along the log–log line through (n0, e0) and
+/// (n1, e1) (n0 < n1, the last two sizes of a run) reaches `target`, the line's slope replaced
+/// by `optimalRate` (< 0: −1 for L2, −1/2 for H1 with P1) where that is shallower:
+/// n1 (target / e1)^(1/rate). NaN when it cannot be predicted: non-positive or non-finite
+/// input, n0 ≥ n1, or the errors not falling (rate ≥ −0.05). ≤ n1 when e1 ≤ target.
+double verticesForError(double n0, double e0, double n1, double e1, double target, double optimalRate);
 
 struct QualitySummary {
   double mean = 0, min = 0;  ///< of q(T) = 4√3 |T|_M / Σ |e|²_M ∈ (0, 1], 1 = equilateral in M

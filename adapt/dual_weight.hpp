@@ -60,6 +60,22 @@
 /// 0.06/0.58, −0.66 → 0.11/0.66, −0.75 (its stretching is what its H1 needs: an anisotropy cap of
 /// 3000 gives L2 0.16 and H1 0.87). 0.01 is the default: the line singularity's H1 bar (0.9) stops
 /// it below 0.02; the other seven problems move by ≤ 0.05 (multiple's L2 0.50 → 0.45).
+///
+/// Goal weighting (AdaptOptions::dualGoal). The term above is |u_yy| h_x² |z_xx| per unit area:
+/// the dual's curvature matters in proportion to u's second derivatives. Integrating the
+/// error term by parts on each side, ∫ ∇(u − Πu)·∇(z − Πz) ≈ −∫ Δu (z − Πz) − ∫ Δz (u − Πu)
+/// up to the element jumps, whose first part is the interpolation error of z weighted by |Δu|:
+/// the metric of |Δu_h| |H_z| (Loseille–Dervieux–Alauzet's goal-oriented Hessian for this
+/// functional; the second part, |Δz| |H_u| = |H_u| for the unit-load dual, is u's own metric).
+/// With it, M(u; (1 − φ − φ_z) N) ∩ M(|Δu_h| |H_z|; φ_z N): the dual's share goes where u is
+/// curved. Measured (`examples/compare_freefem/run.sh`'s FreeFem++ loop to 2.96·10⁴ vertices,
+/// defaults otherwise; worst ratios L2 / H1, L2 rate over the last four sizes) on the line
+/// singularity: off 0.15/0.87, −0.56; on with φ_z = 0.01 0.22/0.87, −0.65; 0.02 0.08/0.92,
+/// −1.01; 0.03 0.06/0.95, −1.08 (the H1 bar 0.9 is crossed where the rate bar is met, as with
+/// the unweighted share). On the tanh layer a goal share of 0.05–0.1 concentrates the whole
+/// share in the layer (|Δu| ~ 10⁴ there) with sizes of aspect ≈ 1, and its L2 error rises 20×
+/// (`ablmg adapt --problem tanhlayer --vertices 20000 --max-aniso 1e4`: 1.2·10⁻⁶ → 2.5–2.8·10⁻⁵).
+/// Off by default.
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/fem/poisson_problem.hpp"
 #include <span>

@@ -9,7 +9,8 @@
 // bench/results/graded_meshes). uniform1M = unitSquareMesh(1001), assembly included.
 // Counters: unknowns, factor non-zeros (lnz), factorisation flops (CHOLMOD's fl: the
 // load-independent measure), ordering seconds; the error of the solution so that a fast
-// wrong answer shows.
+// wrong answer shows. BM_Analyse (by hand: --benchmark_filter=BM_Analyse): each ordering's
+// factor non-zeros and flops on the 10⁵ and 10⁶ uniform grids, without factorising.
 #include "ablmg/fem/assemble.hpp"
 #include "ablmg/fem/solve.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
@@ -17,6 +18,7 @@
 #include "ablmg/io/medit.hpp"
 
 #include <benchmark/benchmark.h>
+#include <cholmod.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -118,6 +120,47 @@ void BM_Ordering(benchmark::State& state) {
   }
 }
 
+/// Ordering + CHOLMOD's symbolic analysis, no numeric factorisation: the factor's non-zeros and
+/// flops of each ordering of one whole factorisation (CHOLMOD's etree postorder on), where METIS
+/// and NESDIS take seconds at 10⁶ unknowns. Ordering k: 0 ours (default cuts), 1 METIS_NodeND,
+/// 2 CHOLMOD's NESDIS (its ordering runs inside the analysis). CPU: the process, both threads.
+void BM_Analyse(benchmark::State& state) {
+  const int meshIndex = int(state.range(0)), k = int(state.range(1));
+  const char* const names[] = {"geometric(smallest separator)", "metis", "cholmod nesdis"};
+  state.SetLabel(std::string(kMeshes[meshIndex]) + " " + names[k]);
+  Eigen::SparseMatrix<double> A = caseOf(meshIndex).system.A;
+  const std::vector<Vec2>& points = caseOf(meshIndex).system.dofPoints;
+  cholmod_common c;
+  cholmod_start(&c);
+  c.print = 0;
+  c.nmethods = 1;
+  c.method[0].ordering = k == 2 ? CHOLMOD_NESDIS : CHOLMOD_GIVEN;
+  cholmod_sparse v{};
+  v.nrow = v.ncol = std::size_t(A.rows());
+  v.nzmax = std::size_t(A.nonZeros());
+  v.p = A.outerIndexPtr();
+  v.i = A.innerIndexPtr();
+  v.x = A.valuePtr();
+  v.stype = -1;
+  v.itype = CHOLMOD_INT;
+  v.xtype = CHOLMOD_REAL;
+  v.dtype = CHOLMOD_DOUBLE;
+  v.sorted = 1;
+  v.packed = 1;
+  for (auto _ : state) {
+    std::vector<int> perm = k == 0   ? geometricNestedDissection(A, points)
+                            : k == 1 ? metisNestedDissection(A)
+                                     : std::vector<int>();
+    cholmod_factor* L = cholmod_analyze_p(&v, perm.empty() ? nullptr : perm.data(), nullptr, 0, &c);
+    if (!L) state.SkipWithError("cholmod_analyze failed");
+    cholmod_free_factor(&L, &c);
+  }
+  state.counters["unknowns"] = double(A.rows());
+  state.counters["lnz"] = c.lnz;
+  state.counters["GFlop"] = c.fl * 1e-9;
+  cholmod_finish(&c);
+}
+
 /// Assembly + solve at 10⁶ unknowns (uniform), the default ordering (argument 0) or the
 /// default ordering factorised whole (argument 4).
 void BM_AssembleAndSolve1M(benchmark::State& state) {
@@ -145,5 +188,11 @@ BENCHMARK(BM_Solve)
     ->UseRealTime()
     ->Iterations(3);
 BENCHMARK(BM_Ordering)->ArgsProduct({{0, 1, 2, 3}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_Analyse)
+    ->ArgsProduct({{0, 3}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Iterations(1);
 BENCHMARK(BM_AssembleAndSolve1M)->Arg(0)->Arg(4)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 BENCHMARK_MAIN();

@@ -6,7 +6,8 @@
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
-//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off]
+//               [--dual-goal on|off]
+//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
@@ -142,6 +143,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
     } else if (key == "--dual-share") {
       a.options.dualShare = parseNumber(value(), "adapt: --dual-share");
+    } else if (key == "--dual-goal") {
+      a.options.dualGoal = parseOnOff(value(), "adapt: --dual-goal");
     } else if (key == "--l2-share") {
       a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
     } else if (key == "--hmax-uniform") {
@@ -155,10 +158,14 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.uniform = parseOnOff(value(), "adapt: --uniform");
     } else if (key == "--vtu") {
       a.vtu = parseOnOff(value(), "adapt: --vtu");
-    } else if (key == "--stop-l2") {
-      a.options.stopL2 = parseNumber(value(), "adapt: --stop-l2");
-    } else if (key == "--stop-h1") {
-      a.options.stopH1 = parseNumber(value(), "adapt: --stop-h1");
+    } else if (key == "--stop-l2" || key == "--stop-h1") {
+      const double e = parseNumber(value(), "adapt: " + key);
+      ABLMG_REQUIRE(e > 0 && std::isfinite(e), "adapt: " << key << " must be a positive error, got " << e);
+      (key == "--stop-l2" ? a.options.stopL2 : a.options.stopH1) = e;
+    } else if (key == "--stop-aim") {
+      const double v = parseNumber(value(), "adapt: --stop-aim");
+      ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --stop-aim must be in [0, 1] (0: off), got " << v);
+      a.options.stopSizeAim = v;
     } else if (key == "--warm-start") {
       a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
     } else if (key == "--saddle-shape") {
@@ -172,7 +179,7 @@ Args parseArgs(const std::vector<std::string>& args) {
     } else if (key == "--repeat-min-change") {
       const double c = parseNumber(value(), "adapt: --repeat-min-change");
       ABLMG_REQUIRE(c >= 0 && c <= 10, "adapt: --repeat-min-change must be in [0, 10], got " << c);
-      a.options.repeatMinChange = c;
+      a.options.repeatMinChange = a.options.stopRepeatMinChange = c;
     } else if (key == "--plateau-gain") {
       const double g = parseNumber(value(), "adapt: --plateau-gain");
       ABLMG_REQUIRE(g >= 0 && g < 1, "adapt: --plateau-gain must be in [0, 1), got " << g);
@@ -196,15 +203,16 @@ Args parseArgs(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
     } else {
-      ABLMG_REQUIRE(
-          false,
-          "adapt: unknown argument '"
-              << key
-              << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
-                 "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                 "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --max-aniso --seed "
-                 "--stop-l2 --stop-h1 --warm-start --lattice --saddle-shape --corner-grading --repeat-min-change "
-                 "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
+      ABLMG_REQUIRE(false,
+                    "adapt: unknown argument '"
+                        << key
+                        << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
+                           "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --dual-goal "
+                           "--max-aniso --seed "
+                           "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
+                           "--repeat-min-change "
+                           "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -314,8 +322,13 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"l2_share", a.options.l2Share},
           {"dual_weight", a.options.dualWeight},
           {"dual_share", a.options.dualShare},
+          {"dual_goal", a.options.dualGoal},
           {"warm_start", a.options.warmStart},
           {"repeat_min_change", a.options.repeatMinChange},
+          {"stop_repeat_min_change", a.options.stopRepeatMinChange},
+          {"stop_l2", a.options.stopL2},
+          {"stop_h1", a.options.stopH1},
+          {"stop_aim", a.options.stopSizeAim},
           {"saddle_shape", a.options.metric.saddleShape},
           {"corner_grading", a.options.cornerGrading},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
@@ -329,7 +342,9 @@ const char* kAdaptHelp =
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
-                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--warm-start on|off] [--lattice short|axes|long]
+                   [--dual-goal on|off]
+                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
+                   [--lattice short|axes|long]
                    [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off]
                    [--vtu on|off]
                    [--medit on|off]
@@ -352,16 +367,23 @@ each size below N1 (default 10000); --target-vertices: cycle k targets N_k verti
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
 DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
+--stop-l2 E, --stop-h1 E: stop after the first cycle whose error (against the exact solution)
+is at most E; N (--vertices) is then the most the run may use. With a stop, after each size
+the next one is chosen from the errors of the last two sizes (log-log, the optimal rate where
+the fit is steeper) to reach A x E (--stop-aim A, default 0.95; 0 = off: whole sizes of the
+schedule) when that is below the schedule's next size, so the run does not overshoot the
+target by a whole size.
 --saddle-shape S: on near-harmonic saddles (indefinite Hessians) a shape of aspect up to 3^(S/2)
 at 45 degrees to the eigenvectors, meshed as right isosceles triangles by lattice rows the
 metric carries per vertex (default 1; 0 = off; adapt/metric_from_hessian.hpp). At boundary
 vertices the side (+-45 degrees) whose long axis runs along the wall.
---corner-grading B: at corners of the boundary where the sizes around shrink like r^s towards
+--corner-grading B: at reentrant corners of the boundary where the sizes around shrink like r^s towards
 it (a singular point), the corner's size becomes B times the end r* of that grading, at most
 a quarter per remesh (default 0.25; 0 = off; adapt/metric_from_hessian.hpp, gradeSingularCorners).
 --repeat-min-change C: a size's remaining passes are skipped after a cycle whose next metric
 differs from the one its mesh was built for by less than C (dM= in the cycle lines: the mean
-largest log change of a unit edge's length; 0 = run every pass; adapt/adaptive_loop.hpp).
+largest log change of a unit edge's length; 0 = run every pass; default 0, and 0.2 with
+--stop-l2/--stop-h1, where only the last cycle's error counts; adapt/adaptive_loop.hpp).
 --lattice: the initial bubble lattice has one row along each node's short-size direction
 (short, the default here), the x axis's image (axes) or the long-size direction (long).
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric

@@ -228,9 +228,15 @@ void buildPattern(const Mesh2& mesh, LinearSystem& sys) {
   sys.A.resize(n, n);
   sys.A.resizeNonZeros(Eigen::Index(outer[std::size_t(n)]));
   std::copy(outer.begin(), outer.end(), sys.A.outerIndexPtr());
-  int* innerOut = sys.A.innerIndexPtr();
-  for (const std::vector<int>& chunk : chunks) innerOut = std::copy(chunk.begin(), chunk.end(), innerOut);
-  std::fill(sys.A.valuePtr(), sys.A.valuePtr() + outer[std::size_t(n)], 0.0);
+  // Each thread copies its own chunk and zeroes its values (the first touch of the matrix's
+  // pages, shared between the threads).
+  std::vector<std::size_t> chunkStart(chunks.size() + 1, 0);
+  for (std::size_t c = 0; c < chunks.size(); ++c) chunkStart[c + 1] = chunkStart[c] + chunks[c].size();
+#pragma omp parallel for schedule(static, 1) if (n >= kParallelUnknowns)
+  for (std::size_t c = 0; c < chunks.size(); ++c) {
+    std::copy(chunks[c].begin(), chunks[c].end(), sys.A.innerIndexPtr() + chunkStart[c]);
+    std::fill(sys.A.valuePtr() + chunkStart[c], sys.A.valuePtr() + chunkStart[c + 1], 0.0);
+  }
   sys.b = Eigen::VectorXd::Zero(n);
 }
 
@@ -258,6 +264,36 @@ void scatterElement(const std::array<int, 3>& tri, const ElementData& d, LinearS
   }
 }
 
+constexpr int kMaxScatterThreads = 64;
+
+/// Row ranges [cut[k], cut[k + 1]) for `threads` scattering threads (cut[0] = 0,
+/// cut[threads] = n): the k/threads quantiles of the first free dof of every 16th triangle
+/// of [t0, t1). Each row belongs to one range, so every entry still sums its terms in triangle
+/// order: the split changes who adds, not the order or the result.
+void rowCuts(const Mesh2& mesh, const LinearSystem& sys, int t0, int t1, int threads, int* cut) {
+  const int n = int(sys.A.rows());
+  cut[0] = 0;
+  cut[threads] = n;
+  if (threads == 1) return;
+  std::vector<int> sample;
+  sample.reserve(std::size_t(t1 - t0) / 16 + 1);
+  for (int t = t0; t < t1; t += 16)
+    for (int v : mesh.triangles[std::size_t(t)])
+      if (const int d = sys.dofOfVertex[std::size_t(v)]; d >= 0) {
+        sample.push_back(d);
+        break;
+      }
+  for (int k = 1; k < threads; ++k) {
+    if (sample.empty()) {
+      cut[k] = int(long(n) * k / threads);
+      continue;
+    }
+    const auto at = sample.begin() + std::ptrdiff_t(sample.size() * std::size_t(k) / std::size_t(threads));
+    std::nth_element(sample.begin(), at, sample.end());
+    cut[k] = std::max(cut[k - 1], *at);
+  }
+}
+
 /// 2. Element loop: local stiffness and load, scattered into the pattern. Local data are
 ///    computed in blocks (in parallel when the problem's functions allow it), then scattered
 ///    in triangle order, each thread adding into the rows of its own range of dofs: every
@@ -275,11 +311,17 @@ void assembleElements(const Mesh2& mesh, const PoissonProblem& problem, LinearSy
 #pragma omp parallel for schedule(static) if (parallel)
     for (int t = t0; t < t1; ++t) failure.run(t, [&] { computeElement(mesh, problem, rule, t, block[t - t0]); });
     failure.rethrow();
-#pragma omp parallel if (n >= kParallelUnknowns)
+    // The block's rows are split between the threads at quantiles of a sample of its
+    // triangles' dofs: a block of a mesh numbered along its rows touches a narrow band of
+    // rows, which a split of all n rows would give to one thread.
+    const int threads = n >= kParallelUnknowns ? std::min(omp_get_max_threads(), kMaxScatterThreads) : 1;
+    int cut[kMaxScatterThreads + 1];
+    rowCuts(mesh, sys, t0, t1, threads, cut);
+#pragma omp parallel num_threads(threads) if (threads > 1)
     {
-      const int threads = omp_get_num_threads(), th = omp_get_thread_num();
-      const int r0 = int(long(n) * th / threads), r1 = int(long(n) * (th + 1) / threads);
-      for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys, r0, r1);
+      // A team smaller than asked (nested regions) takes the ranges in turn.
+      for (int k = omp_get_thread_num(); k < threads; k += omp_get_num_threads())
+        for (int t = t0; t < t1; ++t) scatterElement(mesh.triangles[t], block[t - t0], sys, cut[k], cut[k + 1]);
     }
   }
 }

@@ -4,6 +4,7 @@
 #include "ablmg/core/parallel_failure.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -79,6 +80,8 @@ struct Dissection {
   static double along(const Vec2& p, int d) {
     return d == 0 ? p.x() : d == 1 ? p.y() : d == 2 ? p.x() + p.y() : p.x() - p.y();
   }
+  /// The four projections of p at once (the same values as along(p, d), d = 0..3).
+  static std::array<double, 4> projections(const Vec2& p) { return {p.x(), p.y(), p.x() + p.y(), p.x() - p.y()}; }
 
   /// Median of the piece's coordinates along d (the upper median, as a coordinate), over every
   /// vertex, or over an evenly strided sample of ≈ kMedianSample of them if `sampled` (a cut's
@@ -102,10 +105,16 @@ struct Dissection {
                       long (&size)[4][kQuantiles]) const {
     long middle[4][kQuantiles] = {}, lowerTouching[4][kQuantiles] = {}, upperTouching[4][kQuantiles] = {};
     for (int v : set) {
-      const Vec2 p = points[v];
+      const std::array<double, 4> c4 = projections(points[v]);
       const float* r = &reach[4 * std::size_t(v)];
+      // Most vertices are farther than their reach from all twelve lines: one branch-free test
+      // skips them (a vertex on a line is within its reach, which is > 0).
+      bool near = false;
+      for (int d = 0; d < 4; ++d)
+        for (int i = 0; i < kQuantiles; ++i) near |= std::abs(c4[d] - m[d][i]) <= double(r[d]);
+      if (!near) continue;
       for (int d = 0; d < 4; ++d) {
-        const double c = along(p, d), rd = double(r[d]);
+        const double c = c4[d], rd = double(r[d]);
         for (int i = 0; i < kQuantiles; ++i) {
           const double mi = m[d][i];
           if (c == mi) {
@@ -175,14 +184,14 @@ struct Dissection {
   Cut bestCut(const std::vector<int>& set, bool root) {
     const int s = newStamp();
     for (int v : set) setMark(v, s);
-    double lo[4], hi[4];
-    for (int d = 0; d < 4; ++d) lo[d] = hi[d] = along(points[set[0]], d);
-    for (int v : set)
+    std::array<double, 4> lo = projections(points[set[0]]), hi = lo;
+    for (int v : set) {
+      const std::array<double, 4> c = projections(points[v]);
       for (int d = 0; d < 4; ++d) {
-        const double c = along(points[v], d);
-        lo[d] = std::min(lo[d], c);
-        hi[d] = std::max(hi[d], c);
+        lo[d] = std::min(lo[d], c[d]);
+        hi[d] = std::max(hi[d], c[d]);
       }
+    }
     double m[4][kQuantiles];
     long size[4][kQuantiles];
     for (int d = 0; d < 4; ++d) quantilesAlong(set, d, m[d]);

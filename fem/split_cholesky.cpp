@@ -41,8 +41,15 @@ struct Side {
 
   Side() { cholmod_start(&c); }
   ~Side() {
-    if (L) cholmod_free_factor(&L, &c);
+    release();
     cholmod_finish(&c);
+  }
+  /// Frees the factor and the blocks (CHOLMOD's counts in c stay).
+  void release() {
+    if (L) cholmod_free_factor(&L, &c);
+    Eigen::SparseMatrix<double>().swap(M);
+    T.resize(0, 0);
+    P.resize(0, 0);
   }
   Side(const Side&) = delete;
   Side& operator=(const Side&) = delete;
@@ -269,6 +276,9 @@ Eigen::VectorXd splitCholeskySolve(const Eigen::SparseMatrix<double>& A, const s
     dtrmv_("L", "T", "N", &ns, s.T.data(), &ns, rhs.data() + s.count, &one, 1, 1, 1);
     const Eigen::VectorXd xq = solveSide(s, CHOLMOD_Lt, rhs);
     for (int j = 0; j < s.count; ++j) x[order[std::size_t(s.first + j)]] = xq[j];
+    // Each side's factor (≈ 0.4 GB at 10⁶ unknowns) goes back on its own thread: returning
+    // its pages costs ≈ 0.03 s CPU per side, which the calling thread alone paid before.
+    s.release();
   });
   if (stats) {
     stats->symbolicSeconds = tSymbolic;

@@ -4,13 +4,17 @@
 #include "ablmg/io/atomic_file.hpp"
 
 #include <cairo.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
+#include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 namespace ablmg::io {
 namespace {
@@ -36,6 +40,49 @@ View makeView(double xmin, double ymin, double xmax, double ymax, const PictureO
   return {xmin, ymin, s, double(h), o.margin};
 }
 
+/// The rows of an ARGB32 surface into `png` (set up for `file`) as 8-bit RGB: premultiplied
+/// ARGB in native byte order composited on white, c + (255 − a). False on a libpng error, which
+/// libpng reports by longjmp to the setjmp here (nothing with a destructor lives in this frame).
+bool writeRgbRows(png_structp png, png_infop info, std::FILE* file, cairo_surface_t* surface, png_byte* row) {
+  if (setjmp(png_jmpbuf(png)) != 0) return false;
+  const int w = cairo_image_surface_get_width(surface), h = cairo_image_surface_get_height(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  png_init_io(png, file);
+  png_set_compression_level(png, 1);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
+  png_set_IHDR(png, info, png_uint_32(w), png_uint_32(h), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+  png_write_info(png, info);
+  for (int y = 0; y < h; ++y) {
+    const auto* px = reinterpret_cast<const std::uint32_t*>(data + std::ptrdiff_t(y) * stride);
+    for (int x = 0; x < w; ++x) {
+      const std::uint32_t v = px[x], white = 255 - (v >> 24);
+      row[3 * x] = png_byte(((v >> 16) & 255) + white);
+      row[3 * x + 1] = png_byte(((v >> 8) & 255) + white);
+      row[3 * x + 2] = png_byte((v & 255) + white);
+    }
+    png_write_row(png, row);
+  }
+  png_write_end(png, nullptr);
+  return true;
+}
+
+/// An ARGB32 image surface as an RGB PNG (the canvases are painted white first, so nothing of
+/// the alpha is lost), zlib's fastest level and the Up filter. cairo's own writer (level 6,
+/// libpng's adaptive filter choice per row) spent 1.5·10⁹ instructions on a 1200 × 1200 mesh
+/// picture, 10–15 % of an `ablmg adapt` run to 3·10⁴ vertices. False on an I/O or libpng error.
+bool writeRgbPng(cairo_surface_t* surface, const std::string& path) {
+  std::vector<png_byte> row(std::size_t(cairo_image_surface_get_width(surface)) * 3);
+  std::FILE* file = std::fopen(path.c_str(), "wb");
+  if (!file) return false;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  const bool ok = png && info && writeRgbRows(png, info, file, surface, row.data());
+  if (png) png_destroy_write_struct(&png, info ? &info : nullptr);
+  return std::fclose(file) == 0 && ok;
+}
+
 using Surface = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
 using Context = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
 
@@ -53,8 +100,7 @@ struct Canvas {
   void save(const std::string& path) {
     cairo_surface_flush(surface.get());
     writePathAtomically(path, [&](const std::string& tmp) {
-      if (cairo_surface_write_to_png(surface.get(), tmp.c_str()) != CAIRO_STATUS_SUCCESS)
-        ABLMG_FAIL(path << ": cannot write PNG");
+      if (!writeRgbPng(surface.get(), tmp)) ABLMG_FAIL(path << ": cannot write PNG");
     });
   }
 };

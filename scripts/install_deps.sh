@@ -16,6 +16,7 @@ packages=(
   libbenchmark-dev     # bench/
   libmuparser-dev      # metric and surface expressions in x,y / u,v (core)
   libcairo2-dev        # PNG pictures of bubbles, meshes, convergence plots (io)
+  libpng-dev           # the pictures written at zlib level 1 (io/picture.cpp; cairo's writer is 10x slower)
   clang libclang-rt-14-dev libomp-dev  # libFuzzer targets in fuzz/ (scripts/fuzz.sh; clang's OpenMP)
   python3-dev python3-numpy pybind11-dev python3-pybind11  # the Python module `ablmg` (python/)
   python3-pytest python3-meshio  # its tests (python/tests: pytest; medit/VTU interchange with meshio)

@@ -139,3 +139,70 @@ TEST(AdaptMetric, DualShareBoundsTheAnisotropyOfAFlatDirectionAtTheSameComplexit
   bad.l2Share = 0.5;
   EXPECT_THROW(validate(bad), InputError);
 }
+
+TEST(AdaptMetric, LoopDefaultCapLetsAStraightLayerReachHmax) {
+  // u = y²: u_xx = 0, so the Hessian sets no long size; the cap on h_long/h_short does. At 10⁷
+  // vertices h_y ≈ 10⁻⁵ against hmax = √2/4: the loop's default (10⁵) leaves h_x at hmax, the
+  // metric options' own default (10⁴) binds.
+  const Mesh2 mesh = fem::unitSquareMesh(30, 0.15, 3);
+  std::vector<double> u(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v) u[v] = mesh.vertices[v].y() * mesh.vertices[v].y();
+  AdaptOptions o;
+  o.dualShare = 0;
+  const auto hu = recoverHessians(mesh, u, o.hessian);
+  auto worstAspect = [&] {
+    double worst = 0;
+    for (const auto& m : metricFromRecovered(mesh, hu, 1e7, o).metric) {
+      const MetricEigen e = m.eigen();
+      worst = std::max(worst, e.h1 / e.h2);
+    }
+    return worst;
+  };
+  EXPECT_EQ(o.metric.maxAnisotropy, 1e5);
+  EXPECT_GT(worstAspect(), 1.5e4);
+  o.metric.maxAnisotropy = MetricOptions{}.maxAnisotropy;
+  EXPECT_LE(worstAspect(), 1e4 * (1 + 1e-9));
+}
+
+TEST(AdaptMetric, DualGoalWeightsTheDualMetricByTheLaplacianOfU) {
+  const Mesh2 mesh = fem::unitSquareMesh(50, 0.15, 3);
+  std::vector<double> flat(mesh.numVertices()), ramp(mesh.numVertices()), z(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    const Vec2& p = mesh.vertices[v];
+    flat[v] = p.y() * p.y();                       // Δu = 2 everywhere
+    ramp[v] = p.y() * p.y() + std::pow(p.y(), 4);  // u_xx = 0, Δu = 2 + 12y²: u's gradient error grows with y
+    z[v] = p.x() * (1 - p.x()) * p.y() * (1 - p.y());
+  }
+  AdaptOptions o;
+  o.dualShare = 0.05;
+  const auto hz = recoverHessians(mesh, z, o.hessian);
+  auto metric = [&](const std::vector<double>& u, bool goal) {
+    o.dualGoal = goal;
+    const auto m = metricFromRecovered(mesh, recoverHessians(mesh, u, o.hessian), 4000, o, {}, hz).metric;
+    EXPECT_NEAR(metricComplexity(mesh, m) / complexityForVertices(4000), 1.0, 0.01);
+    return m;
+  };
+  // A constant weight changes nothing: the dual's metric is rescaled to its share anyway.
+  const auto off = metric(flat, false), on = metric(flat, true);
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    const double scale = std::abs(off[v].m11()) + std::abs(off[v].m22());
+    EXPECT_NEAR(on[v].m11(), off[v].m11(), 1e-9 * scale) << v;
+    EXPECT_NEAR(on[v].m12(), off[v].m12(), 1e-9 * scale) << v;
+    EXPECT_NEAR(on[v].m22(), off[v].m22(), 1e-9 * scale) << v;
+  }
+  // Weighted by |Δu|, the dual bounds the long size (x) more where Δu is large (y ≈ 0.8) and less
+  // where it is small (y ≈ 0.3) than the unweighted dual does.
+  auto aspectAt = [&](const std::vector<Metric2>& m, double y) {
+    double worst = 0;
+    for (int v = 0; v < mesh.numVertices(); ++v)
+      if (std::abs(mesh.vertices[v].y() - y) < 0.05 && std::abs(mesh.vertices[v].x() - 0.5) < 0.2) {
+        const MetricEigen e = m[v].eigen();
+        worst = std::max(worst, e.h1 / e.h2);
+      }
+    return worst;
+  };
+  const auto rampOff = metric(ramp, false), rampOn = metric(ramp, true);
+  const double skewOff = aspectAt(rampOff, 0.8) / aspectAt(rampOff, 0.3);
+  const double skewOn = aspectAt(rampOn, 0.8) / aspectAt(rampOn, 0.3);
+  EXPECT_LT(skewOn, 0.7 * skewOff) << skewOn << " " << skewOff;
+}

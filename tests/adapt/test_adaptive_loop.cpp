@@ -155,6 +155,85 @@ TEST(AdaptiveLoop, RatesUseTheLastPassOfEachSize) {
   EXPECT_LT(r.h1Rate, -0.4);
 }
 
+TEST(AdaptiveLoop, VerticesForErrorFollowsTheShallowerOfTheFittedAndOptimalRates) {
+  // H1 halving per 4× vertices (rate −1/2 exactly): 0.1 at 1000, 0.05 at 4000 → 0.025 at 16000.
+  EXPECT_NEAR(verticesForError(1000, 0.1, 4000, 0.05, 0.025, -0.5), 16000, 1e-6);
+  // A steeper fitted rate (−1) is not trusted beyond the optimal −1/2: the same 16000 from 4000.
+  EXPECT_NEAR(verticesForError(1000, 0.2, 4000, 0.05, 0.025, -0.5), 16000, 1e-6);
+  // A shallower one (−1/4) is used: the error halves per 16× vertices.
+  EXPECT_NEAR(verticesForError(1000, 0.05 * std::sqrt(2.0), 4000, 0.05, 0.025, -0.5), 64000, 1e-6);
+  // L2 at its optimal rate −1.
+  EXPECT_NEAR(verticesForError(1000, 0.04, 2000, 0.02, 0.005, -1), 8000, 1e-6);
+  // Nothing to predict from errors that do not fall, or from bad input.
+  EXPECT_TRUE(std::isnan(verticesForError(1000, 0.05, 2000, 0.05, 0.01, -0.5)));
+  EXPECT_TRUE(std::isnan(verticesForError(1000, 0.04, 2000, 0.05, 0.01, -0.5)));
+  EXPECT_TRUE(std::isnan(verticesForError(2000, 0.1, 1000, 0.05, 0.01, -0.5)));
+  EXPECT_TRUE(std::isnan(verticesForError(1000, 0.1, 2000, std::nan(""), 0.01, -0.5)));
+  EXPECT_TRUE(std::isnan(verticesForError(1000, 0.1, 2000, 0.05, 0, -0.5)));
+}
+
+TEST(AdaptiveLoop, StopTargetIsReachedWithoutOvershootingByAWholeSize) {
+  // The H1 target E lies between the errors of the 1000- and 2000-vertex sizes of a doubling
+  // schedule: without stopSizeAim the run ends on the 2000 size (the first one to reach E);
+  // with it, the size after 1000 is the one the errors of 500 and 1000 predict for 0.95 E,
+  // fewer vertices, and the run still ends at or below E.
+  const auto problem = fem::makeProblem("wavefront");
+  AdaptOptions o;
+  o.targetVertices = geometricSchedule(4000, {.startVertices = 250, .passes = 1});  // 250 … 4000
+  o.stopSizeAim = 0;
+  o.cycles = 4;  // to 2000, no stop: the errors the target is chosen from
+  const AdaptReport plain = runAdaptiveLoop(problem, o);
+  ASSERT_EQ(plain.cycles.size(), 4u);
+  const double e1000 = plain.cycles[2].h1, e2000 = plain.cycles[3].h1;
+  ASSERT_LT(e2000, e1000);
+  const double target = std::sqrt(e1000 * e2000);
+  o.cycles = 0;
+  o.stopH1 = target;
+  const AdaptReport whole = runAdaptiveLoop(problem, o);  // the same meshes, up to the stop
+  ASSERT_EQ(whole.cycles.size(), 4u);
+  EXPECT_TRUE(whole.stoppedEarly);
+  EXPECT_EQ(whole.cycles.back().h1, e2000);
+  o.stopSizeAim = 0.95;
+  const AdaptReport aimed = runAdaptiveLoop(problem, o);
+  EXPECT_TRUE(aimed.stoppedEarly);
+  EXPECT_LE(aimed.cycles.back().h1, target);
+  EXPECT_LT(aimed.cycles.back().targetVertices, 2000);
+  EXPECT_LT(aimed.cycles.back().vertices, whole.cycles.back().vertices * 0.9);
+  long sumWhole = 0, sumAimed = 0;
+  for (const auto& c : whole.cycles) sumWhole += c.vertices;
+  for (const auto& c : aimed.cycles) sumAimed += c.vertices;
+  EXPECT_LT(sumAimed, sumWhole);
+  // The cycles before the prediction are those of the plain run.
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(aimed.cycles[k].h1, plain.cycles[k].h1) << "cycle " << k;
+  o.stopSizeAim = 1.5;
+  EXPECT_THROW(runAdaptiveLoop(problem, o), InputError);
+}
+
+TEST(AdaptiveLoop, WithAStopTheSettledRepeatsAreSkipped) {
+  // Three passes per size on the L-shape with a stop that is not reached: with the defaults
+  // (repeatMinChange 0, stopRepeatMinChange 0.2) a size's remaining passes are skipped once a
+  // pass's metric moved less than 0.2, so fewer cycles run than the schedule has; with
+  // stopRepeatMinChange 0 every pass runs, as without a stop.
+  const auto problem = fem::makeProblem("lshape");
+  AdaptOptions o;
+  o.targetVertices = geometricSchedule(1600, {.startVertices = 200});  // 200, 400, 800 ×3, 1600 ×3
+  o.stopH1 = 1e-9;
+  const AdaptReport skipped = runAdaptiveLoop(problem, o);
+  EXPECT_FALSE(skipped.stoppedEarly);
+  EXPECT_LT(skipped.cycles.size(), o.targetVertices.size());
+  EXPECT_EQ(skipped.cycles.back().targetVertices, 1600);
+  for (std::size_t k = 0; k + 1 < skipped.cycles.size(); ++k) {
+    const CycleReport& c = skipped.cycles[k];
+    if (skipped.cycles[k + 1].targetVertices == c.targetVertices && c.targetVertices != 1600) {
+      EXPECT_GE(c.metricChange, o.stopRepeatMinChange) << "cycle " << k;
+    }
+  }
+  o.stopRepeatMinChange = 0;
+  EXPECT_EQ(runAdaptiveLoop(problem, o).cycles.size(), o.targetVertices.size());
+  o.stopRepeatMinChange = -1;
+  EXPECT_THROW(runAdaptiveLoop(problem, o), InputError);
+}
+
 TEST(AdaptiveLoop, MetricChangeIsTheLargestLogChangeOfAUnitEdge) {
   const std::vector<Metric2> a{Metric2::isotropic(1), Metric2::fromSizes(2, 0.5, 0.3)};
   EXPECT_NEAR(metricChange(a, a), 0, 1e-12);
