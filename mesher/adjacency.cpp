@@ -446,6 +446,44 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
 
 namespace {
 
+/// Which boxes hold a point of a set: counts of the points on a G × G grid over their bounding
+/// box, summed (2-d prefix sums), so that a box's count is four reads. Conservative: a box
+/// that holds a point always counts it (the box's cell range, clamped to the grid, is widened
+/// by one cell against rounding), so a zero means the box is empty. Lets an old bubble skip the search for new partners when no
+/// new bubble is near (a population pass adds 10²–10³ bubbles to ~10⁵).
+class OccupancyGrid {
+ public:
+  explicit OccupancyGrid(std::span<const Vec2> x) {
+    lo_ = hi_ = x[0];
+    for (const auto& p : x) {
+      lo_ = lo_.cwiseMin(p);
+      hi_ = hi_.cwiseMax(p);
+    }
+    g_ = std::clamp(int(4 * std::sqrt(double(x.size()))), 1, 1024);
+    cell_ = ((hi_ - lo_) / g_).cwiseMax(Vec2::Constant(1e-300));
+    sum_.assign(std::size_t(g_ + 1) * std::size_t(g_ + 1), 0);
+    for (const auto& p : x) ++sum_[index(cellOf(p.x(), 0) + 1, cellOf(p.y(), 1) + 1)];
+    for (int j = 1; j <= g_; ++j)
+      for (int i = 1; i <= g_; ++i)
+        sum_[index(i, j)] += sum_[index(i - 1, j)] + sum_[index(i, j - 1)] - sum_[index(i - 1, j - 1)];
+  }
+  /// False only if no point lies in the box p ± (rx, ry).
+  bool mayHold(const Vec2& p, double rx, double ry) const {
+    const int i0 = std::max(cellOf(p.x() - rx, 0) - 1, 0), i1 = std::min(cellOf(p.x() + rx, 0) + 1, g_ - 1);
+    const int j0 = std::max(cellOf(p.y() - ry, 1) - 1, 0), j1 = std::min(cellOf(p.y() + ry, 1) + 1, g_ - 1);
+    return sum_[index(i1 + 1, j1 + 1)] - sum_[index(i0, j1 + 1)] - sum_[index(i1 + 1, j0)] + sum_[index(i0, j0)] > 0;
+  }
+
+ private:
+  int cellOf(double v, int axis) const {
+    return int(std::clamp(std::floor((v - lo_[axis]) / cell_[axis]), 0.0, double(g_ - 1)));
+  }
+  std::size_t index(int i, int j) const { return std::size_t(j) * std::size_t(g_ + 1) + std::size_t(i); }
+  Vec2 lo_, hi_, cell_;
+  int g_ = 1;
+  std::vector<int> sum_;
+};
+
 /// The pairs within the radius that have a new bubble (id ≥ firstNew), as (row, partner) in
 /// both directions, sorted, from a search structure of the new bubbles only (a population
 /// pass adds 10²–10³ of them: a tree of all the bubbles each pass was a serial
@@ -459,6 +497,7 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
   const BoxWeights b = boxWeights(m.subspan(std::size_t(firstNew)));
   const std::vector<double>& w = b.w;  // w[q]: new bubble firstNew + q
   const NodeIndex fresh(x.subspan(std::size_t(firstNew)), w, b.reach);
+  const OccupancyGrid near(x.subspan(std::size_t(firstNew)));
   std::vector<std::vector<std::pair<int, int>>> found(static_cast<std::size_t>(omp_get_max_threads()));
   ParallelFailure failure;  // push_back may throw: rethrown after the region (index j)
 #pragma omp parallel if (n >= kMinParallelItems)
@@ -469,6 +508,7 @@ std::vector<std::pair<int, int>> pairsWithNew(int firstNew, std::span<const Vec2
       failure.run(j, [&] {
         const Vec2 R = searchBox(m[j], kPairSearch * radius);
         if (j < firstNew) {
+          if (!near.mayHold(x[j], R.x(), R.y())) return;
           fresh.forEachInBoxFrom(x[j], R.x(), R.y(), -std::numeric_limits<double>::infinity(), [&](int q) {
             const int k = firstNew + q;
             if (withinMetricRadius(x[j] - x[k], m[k], m[j], radius)) out.push_back({k, j});

@@ -411,20 +411,28 @@ long BubbleSystem::updateActivity(const AdjacencyLists& adj, double sleepBelow, 
   const bool full = resetActivity_ || resized || int(kicked_.size()) != n;
   kicked_.resize(std::size_t(n), 0);
   // Candidates: bubbles awake now, and the neighbours of every bubble that moved (or was kicked).
-  // Marked in parallel; concurrent stores of the same value go through atomic_ref.
   next_.assign(std::size_t(n), 0);
-  auto mark = [&](int i) {
-    if (!(movement_.movedThisStep(i) || kicked_[i])) return;
-    std::atomic_ref<char>(next_[i]).store(1, std::memory_order_relaxed);
-    for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
-  };
-  if (full) {
+  const auto moved = [&](int i) { return movement_.movedThisStep(i) || kicked_[i] != 0; };
+  const int m = int(list_.size());
+  if (full || 2 * m >= n) {
+    // Most bubbles advanced: each reads its own row and stops at the first mover (the lists are
+    // symmetric, so this is the set the marking below gives), without a store per list entry.
 #pragma omp parallel for schedule(static) if (n >= kMinParallelItems)
-    for (int i = 0; i < n; ++i) mark(i);
+    for (int i = 0; i < n; ++i) {
+      bool a = moved(i);
+      for (auto it = adj.neighbours(i).begin(); !a && it != adj.neighbours(i).end(); ++it) a = moved(*it);
+      next_[i] = char(a);
+    }
   } else {
-    const int m = int(list_.size());
+    // Few advanced: each mover marks its row, in parallel; concurrent stores of the same value
+    // go through atomic_ref.
 #pragma omp parallel for schedule(static) if (m >= kMinParallelItems)
-    for (int k = 0; k < m; ++k) mark(list_[k]);
+    for (int k = 0; k < m; ++k) {
+      const int i = list_[k];
+      if (!moved(i)) continue;
+      std::atomic_ref<char>(next_[i]).store(1, std::memory_order_relaxed);
+      for (int j : adj.neighbours(i)) std::atomic_ref<char>(next_[j]).store(1, std::memory_order_relaxed);
+    }
   }
   // One pass: the new flags, the awake ids in ascending order (for the next computeForces(),
   // instead of scanning the flags) and the largest travel since the last refresh.
