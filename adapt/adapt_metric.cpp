@@ -81,6 +81,7 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
       metric = intersectFields(metric, metricFromHessians(mesh, dualHessians, mz));
     }
   }
+  if (options.cornerGrading > 0) gradeSingularCorners(mesh, metric, options.cornerGrading, mo.hmin);
   mo.targetVertices = targetVertices;
   mo.hmax = effectiveHmax(mesh, mo);
   if (options.hgrad > 1 || options.l2Share > 0 || dual) {
@@ -99,7 +100,7 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     const double s = complexityForVertices(targetVertices) / metricComplexity(mesh, metric);
     for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
   }
-  if (mo.saddleShape > 0) r.rows = saddleLatticeRows(hessians, mo);
+  if (mo.saddleShape > 0) r.rows = saddleLatticeRows(hessians, mo, wallTangents(mesh));
   r.secondsMetric = watch.seconds();
   return r;
 }

@@ -21,6 +21,8 @@ void validate(const AdaptOptions& o) {
   ABLMG_REQUIRE(o.hgrad <= 0 || (o.hgrad > 1 && std::isfinite(o.hgrad)),
                 "adapt options: hgrad must be > 1 (or <= 0 for no gradation), got " << o.hgrad);
   ABLMG_REQUIRE(o.l2Share >= 0 && o.l2Share < 1, "adapt options: l2Share must be in [0, 1) (got " << o.l2Share << ")");
+  ABLMG_REQUIRE(o.cornerGrading >= 0 && o.cornerGrading <= 1,
+                "adapt options: cornerGrading must be in [0, 1] (got " << o.cornerGrading << ")");
   ABLMG_REQUIRE(o.dualShare >= 0 && o.l2Share + o.dualShare < 1,
                 "adapt options: dualShare must be >= 0 with l2Share + dualShare < 1 (got " << o.dualShare << " and "
                                                                                            << o.l2Share << ")");

@@ -48,9 +48,101 @@ Hessian2 absoluteHessian(const Hessian2& h, double floor) {
 namespace {
 /// The saddle weight of MetricOptions::saddleShape: 0 up to −r = 0.55, 1 from 0.65 on.
 double saddleWeight(double ratio) { return std::clamp((-ratio - 0.55) / 0.1, 0.0, 1.0); }
+
+/// True when C's long axis at +45° from `pos` is closer to the normal of `wall` than to it
+/// (the side at −45° is then the one along the wall); false for wall = 0 (not on a wall).
+bool wallFlip(const Vec2& pos, const Vec2& wall) {
+  if (wall.squaredNorm() == 0) return false;
+  const Vec2 c1 = (pos + Vec2(-pos.y(), pos.x())) / std::sqrt(2.0);
+  return std::abs(c1.dot(wall)) < std::abs(c1.x() * wall.y() - c1.y() * wall.x());
+}
 }  // namespace
 
-Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
+namespace {
+/// Per vertex: 0 interior, 1 on a straight (turn ≤ 20°) stretch of the boundary, 2 at a convex
+/// corner, 3 at a reentrant one (interior angle > π: the boundary turns right, the domain being on
+/// its left, or turns back on itself as at a slit's tip); `tangent` gets the mean unit tangent of
+/// the boundary edges at kind-1 vertices (0 elsewhere).
+std::vector<char> boundaryKinds(const Mesh2& mesh, std::vector<Vec2>& tangent) {
+  const int n = mesh.numVertices();
+  std::vector<Vec2> in(n, Vec2::Zero()), out(n, Vec2::Zero());
+  for (const auto& e : mesh.boundaryEdges) {
+    const Vec2 d = (mesh.vertices[e.b] - mesh.vertices[e.a]).normalized();
+    out[e.a] = d;
+    in[e.b] = d;
+  }
+  std::vector<char> kind(n, 0);
+  tangent.assign(n, Vec2::Zero());
+  const double cosTurn = std::cos(20 * std::numbers::pi / 180);
+  for (int v = 0; v < n; ++v) {
+    if (in[v].squaredNorm() == 0 && out[v].squaredNorm() == 0) continue;
+    const double dot = in[v].dot(out[v]), cross = in[v].x() * out[v].y() - in[v].y() * out[v].x();
+    if (in[v].squaredNorm() == 0 || out[v].squaredNorm() == 0 || dot >= cosTurn) {
+      kind[v] = 1;
+      tangent[v] = (in[v] + out[v]).normalized();
+    } else {
+      kind[v] = cross < 0 || dot < -0.99 ? 3 : 2;
+    }
+  }
+  return kind;
+}
+}  // namespace
+
+std::vector<Vec2> wallTangents(const Mesh2& mesh) {
+  std::vector<Vec2> tangent;
+  boundaryKinds(mesh, tangent);
+  return tangent;
+}
+
+int gradeSingularCorners(const Mesh2& mesh, std::vector<Metric2>& metric, double beta, double hmin) {
+  const int n = mesh.numVertices();
+  ABLMG_REQUIRE(beta > 0 && beta <= 1, "gradeSingularCorners: beta must be in (0, 1] (got " << beta << ")");
+  ABLMG_REQUIRE(long(metric.size()) == long(n),
+                "gradeSingularCorners: " << metric.size() << " metrics for " << n << " vertices");
+  std::vector<Vec2> tangent;
+  const std::vector<char> kind = boundaryKinds(mesh, tangent);
+  std::vector<std::vector<int>> adj(n);
+  bool any = false;
+  for (int v = 0; v < n; ++v) any = any || kind[v] == 3;
+  if (!any) return 0;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) adj[t[k]].push_back(t[(k + 1) % 3]), adj[t[(k + 1) % 3]].push_back(t[k]);
+  std::vector<int> seen(n, -1);
+  int graded = 0;
+  for (int c = 0; c < n; ++c) {
+    if (kind[c] != 3) continue;
+    // Rings 3–6 around c (the inner rings' recovered Hessians are patch averages over the
+    // corner): log h against log r, h = det(M)^(−1/4).
+    std::vector<int> ring{c}, all;
+    seen[c] = c;
+    for (int k = 0; k < 6; ++k) {
+      std::vector<int> next;
+      for (const int v : ring)
+        for (const int w : adj[v])
+          if (seen[w] != c) seen[w] = c, next.push_back(w);
+      if (k >= 2) all.insert(all.end(), next.begin(), next.end());
+      ring = std::move(next);
+    }
+    if (all.size() < 6) continue;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (const int v : all) {
+      const double x = std::log((mesh.vertices[v] - mesh.vertices[c]).norm()), y = -0.25 * std::log(metric[v].det());
+      sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double m = double(all.size()), var = sxx - sx * sx / m;
+    if (!(var > 0)) continue;
+    const double sigma = (sxy - sx * sy / m) / var, logA = (sy - sigma * sx) / m;
+    if (!(sigma > 0.2 && sigma < 0.95)) continue;  // no singular growth of |H| towards c
+    const double hc = std::pow(metric[c].det(), -0.25);
+    const double rStar = std::max({beta * std::exp(logA / (1 - sigma)), 0.25 * hc, hmin});
+    if (!(rStar < hc)) continue;
+    metric[c] = intersect(metric[c], Metric2::isotropic(rStar));
+    ++graded;
+  }
+  return graded;
+}
+
+Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma, const Vec2& wall) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> hs;
   hs.computeDirect(h);
   const Eigen::Vector2d e = hs.eigenvalues();  // ascending
@@ -59,7 +151,8 @@ Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
   const double r = -std::min(-e[0], e[1]) / std::max(-e[0], e[1]);
   const double f = std::pow(3.0, 0.25 * sigma * saddleWeight(r));  // √(aspect)
   const Eigen::Vector2d pos = hs.eigenvectors().col(1);
-  const double angle = std::atan2(pos.y(), pos.x()) + std::numbers::pi / 4;  // long axis
+  const double side = wallFlip(pos, wall) ? -1 : 1;
+  const double angle = std::atan2(pos.y(), pos.x()) + side * std::numbers::pi / 4;  // long axis
   Eigen::Matrix2d rot;
   rot << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
   const Eigen::Matrix2d c = rot * Eigen::Vector2d(1 / (f * f), f * f).asDiagonal() * rot.transpose();
@@ -70,7 +163,8 @@ Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma) {
   return root * c * root;
 }
 
-std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& o) {
+std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& o,
+                                    std::span<const Vec2> walls) {
   std::vector<Vec2> rows(hessians.size(), Vec2::Zero());
   if (o.saddleShape <= 0) return rows;
   const double expo = 1 + o.shapeBlend.value_or(o.norm == ErrorNorm::H1 ? 1.0 : 0.0);
@@ -83,7 +177,8 @@ std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const Me
     const double w = saddleWeight(r);
     if (w == 0) continue;
     const Vec2 pos = hs.eigenvectors().col(1), perp(-pos.y(), pos.x());
-    const Vec2 t = pos * std::pow(e[1], -0.5 * expo) + perp * std::pow(-e[0], -0.5 * expo);
+    const double side = !walls.empty() && wallFlip(pos, walls[v]) ? -1 : 1;
+    const Vec2 t = pos * std::pow(e[1], -0.5 * expo) + side * perp * std::pow(-e[0], -0.5 * expo);
     const double alpha = std::atan2(t.y(), t.x());
     rows[v] = w * Vec2(std::cos(2 * alpha), std::sin(2 * alpha));
   }
@@ -162,12 +257,13 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
   const double s = 1 + o.shapeBlend.value_or(h1 ? 1.0 : 0.0);
   std::vector<Hessian2> shape(n);
   std::vector<double> sqrtDet(n);
+  const std::vector<Vec2> walls = o.saddleShape > 0 ? wallTangents(mesh) : std::vector<Vec2>(n, Vec2::Zero());
   for (int v = 0; v < n; ++v) {
     const Hessian2 a = absoluteHessian(hessians[v], floor);
     if (s == 1 && !h1) {  // the Lp metric, computed exactly as before the H1 option (bitwise same meshes)
       shape[v] = (pInf ? 1.0 : std::pow(a.determinant(), -1.0 / (2 * o.p + 2))) * a;
       sqrtDet[v] = std::sqrt(shape[v].determinant());
-      if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape);
+      if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape, walls[v]);
       continue;
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
@@ -177,7 +273,7 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
     const Eigen::Vector2d m(rho * std::pow(l[0] / root, s), rho * std::pow(l[1] / root, s));
     shape[v] = es.eigenvectors() * m.asDiagonal() * es.eigenvectors().transpose();
     sqrtDet[v] = std::sqrt(m[0] * m[1]);
-    if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape);
+    if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape, walls[v]);
   }
   const double target = complexityForVertices(o.targetVertices);
   const double hmax = effectiveHmax(mesh, o);

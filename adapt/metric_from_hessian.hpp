@@ -130,8 +130,17 @@ struct MetricOptions {
 };
 
 /// The saddle correction of MetricOptions::saddleShape applied to the shape `s` of Hessian `h`
-/// (unchanged where h is not indefinite); det S^½ C S^½ = det S.
-Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma);
+/// (unchanged where h is not indefinite); det S^½ C S^½ = det S. C's long axis lies at +45° to
+/// H's positive eigenvector, or at −45° when `wall` (a unit boundary tangent, 0 off the
+/// boundary) is closer to the normal of the +45° axis than to the axis itself. Why: both sides
+/// give the same right isosceles triangle (mirror images), but next to a wall the mesh's first
+/// row has its base along the wall, and boundary nodes are spaced by the metric's length along
+/// the wall: with the long axis normal to it they were √3 too close and the first rows carried
+/// 1.4–1.7× an equilateral triangle's H1² (L-shape, wall x = 0, 7.9·10³ vertices;
+/// scripts/triangle_shape_efficiency.py). Flipping the side at boundary vertices only (interior
+/// vertices keep +45°: a flipped region's seam costs what the wall gains) took that wall to
+/// 1.0–1.06 and the L-shape's H1 ratio to FreeFem++ 0.908 → 0.901 at 7.9·10³ vertices.
+Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma, const Vec2& wall = Vec2::Zero());
 
 /// Per-vertex lattice rows for the saddle shape (MetricField::latticeRow; all zero when
 /// options.saddleShape = 0): where H is indefinite, w (cos 2α, sin 2α) with w the saddle weight
@@ -141,8 +150,34 @@ Hessian2 saddleShaped(const Hessian2& h, const Hessian2& s, double sigma);
 /// e⊥ = e₊ turned by +90°). Why: M = S^½ C S^½ maps x to y = S^½ x, where C's metric-equilateral
 /// triangle with an edge along c1 is the right isosceles one; a lattice row along t is that
 /// edge in the plane (on a harmonic saddle S ∝ I and t is M's long axis, the long-axis lattice).
-/// Elsewhere 0: the mesher keeps its own orientation there.
-std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& options);
+/// Elsewhere 0: the mesher keeps its own orientation there. `walls` (empty, or one unit tangent
+/// per vertex, wallTangents) picks the side as saddleShaped does.
+std::vector<Vec2> saddleLatticeRows(std::span<const Hessian2> hessians, const MetricOptions& options,
+                                    std::span<const Vec2> walls = {});
+
+/// Unit tangent of the boundary at each boundary vertex of `mesh` (0 at interior vertices and at
+/// corners, where the boundary turns by more than 20°).
+std::vector<Vec2> wallTangents(const Mesh2& mesh);
+
+/// Singular grading at the reentrant corners of the boundary (vertices where it turns by more than
+/// 20° with an interior angle > π, a slit's tip included; convex corners are left alone).
+/// Fits h = A r^σ to the metric's sizes h = det(M)^(−1/4) at the vertices of rings 3–6 around
+/// the corner (r: their distance to it; the inner rings' recovered Hessians are averages over
+/// patches that reach the corner). Where σ ∈ (0.2, 0.95), i.e. |H| grows towards the corner
+/// like r^(−2σ) (u ~ r^a: σ = 1 − a/2 for M ∝ |H|, p = ∞), the graded mesh h(r) = A r^σ ends at
+/// the ring where h = r, r* = A^(1/(1−σ)), and the corner's metric is intersected with the
+/// isotropic one of size max(β r*, hc/4, hmin), hc its own size (hc/4: at most a quarter per
+/// remesh, so that a coarse mesh, whose complexity integral cannot see the corner, is not
+/// starved). Convex corners are excluded because the fit is not enough: on the line singularity
+/// (u = cos(πy/2) + ..., |H| → 0 on y = ±1) three of the square's corners fitted σ = 0.2–0.5,
+/// were refined 4× each pass, and its L2 error rose once with N. Why: the
+/// triangles at a reentrant corner carry the singular part of the error, which the Hessian
+/// model does not see: with the corner's own size (≈ r*) the L-shape's 7 triangles within 10⁻⁴
+/// of the corner held 1.7 % of the H1² error at 7.9·10³ vertices, 38× the mean triangle's
+/// (scripts/corner_h1_bands.py); the element error there scales like ρ^(2a), so β = ¼ lowers it
+/// 6× (a = ⅔) for a few dozen vertices. Returns the number of corners changed; throws
+/// InputError unless β ∈ (0, 1] and metric.size() == mesh.numVertices().
+int gradeSingularCorners(const Mesh2& mesh, std::vector<Metric2>& metric, double beta, double hmin);
 
 /// Throws InputError naming the option and value if out of range.
 void validate(const MetricOptions& options);

@@ -8,7 +8,7 @@
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
 //               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
-//               [--lattice short|axes|long] [--plateau-gain G] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+//               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
@@ -172,6 +172,10 @@ Args parseArgs(const std::vector<std::string>& args) {
       const double v = parseNumber(value(), "adapt: --saddle-shape");
       ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --saddle-shape must be in [0, 1], got " << v);
       a.options.metric.saddleShape = v;
+    } else if (key == "--corner-grading") {
+      const double b = parseNumber(value(), "adapt: --corner-grading");
+      ABLMG_REQUIRE(b >= 0 && b <= 1, "adapt: --corner-grading must be in [0, 1], got " << b);
+      a.options.cornerGrading = b;
     } else if (key == "--repeat-min-change") {
       const double c = parseNumber(value(), "adapt: --repeat-min-change");
       ABLMG_REQUIRE(c >= 0 && c <= 10, "adapt: --repeat-min-change must be in [0, 10], got " << c);
@@ -206,7 +210,8 @@ Args parseArgs(const std::vector<std::string>& args) {
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
                            "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --dual-goal "
                            "--max-aniso --seed "
-                           "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --repeat-min-change "
+                           "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
+                           "--repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
     }
   }
@@ -325,6 +330,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"stop_h1", a.options.stopH1},
           {"stop_aim", a.options.stopSizeAim},
           {"saddle_shape", a.options.metric.saddleShape},
+          {"corner_grading", a.options.cornerGrading},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
           {"plateau_gain", a.options.mesh.placement.plateauSteps > 0 ? a.options.mesh.placement.plateauGain : 0.0},
           {"seed", a.options.mesh.placement.seed}};
@@ -339,7 +345,8 @@ const char* kAdaptHelp =
                    [--dual-goal on|off]
                    [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
                    [--lattice short|axes|long]
-                   [--plateau-gain G] [--saddle-shape S] [--repeat-min-change C] [--uniform on|off] [--vtu on|off]
+                   [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off]
+                   [--vtu on|off]
                    [--medit on|off]
                    [--out-dir DIR] [-v N]
                    [--reference-vertices N] [--print-options]
@@ -368,7 +375,11 @@ schedule) when that is below the schedule's next size, so the run does not overs
 target by a whole size.
 --saddle-shape S: on near-harmonic saddles (indefinite Hessians) a shape of aspect up to 3^(S/2)
 at 45 degrees to the eigenvectors, meshed as right isosceles triangles by lattice rows the
-metric carries per vertex (default 1; 0 = off; adapt/metric_from_hessian.hpp).
+metric carries per vertex (default 1; 0 = off; adapt/metric_from_hessian.hpp). At boundary
+vertices the side (+-45 degrees) whose long axis runs along the wall.
+--corner-grading B: at reentrant corners of the boundary where the sizes around shrink like r^s towards
+it (a singular point), the corner's size becomes B times the end r* of that grading, at most
+a quarter per remesh (default 0.25; 0 = off; adapt/metric_from_hessian.hpp, gradeSingularCorners).
 --repeat-min-change C: a size's remaining passes are skipped after a cycle whose next metric
 differs from the one its mesh was built for by less than C (dM= in the cycle lines: the mean
 largest log change of a unit edge's length; 0 = run every pass; default 0, and 0.2 with

@@ -3,6 +3,7 @@
 #include "ablmg/adapt/metric_from_hessian.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -327,4 +328,89 @@ TEST(MetricFromHessian, SaddleLatticeRowsMakeTheShapedTriangleRightIsosceles) {
   EXPECT_NEAR(leg2.squaredNorm() / leg1.squaredNorm(), 1, 1e-9);  // isosceles
   const double along = std::max(std::abs(leg1.normalized().dot(r.col(0))), std::abs(leg1.normalized().dot(r.col(1))));
   EXPECT_NEAR(along, 1, 1e-9);  // legs along H's eigenvectors
+}
+
+TEST(MetricFromHessian, SaddleSideFollowsTheWall) {
+  // H = [[0, 1], [1, 0]] (the Hessian of u = xy, as at a Dirichlet wall of a harmonic u): C's
+  // long axis is at +45° to e₊ = (1, 1)/√2, i.e. along y. At a wall along y it stays; at a wall
+  // along x the other side is taken (long axis along x), the rows turn with it, and the
+  // determinant is the same on both sides.
+  Hessian2 h;
+  h << 0, 1, 1, 0;
+  const Hessian2 shape = Hessian2::Identity();
+  const auto longAxis = [](const Hessian2& m) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(m);
+    return Eigen::Vector2d(es.eigenvectors().col(0));
+  };
+  const Hessian2 free = saddleShaped(h, shape, 1), alongY = saddleShaped(h, shape, 1, Vec2(0, 1));
+  const Hessian2 alongX = saddleShaped(h, shape, 1, Vec2(1, 0));
+  EXPECT_NEAR(std::abs(longAxis(free).y()), 1, 1e-9);
+  EXPECT_NEAR((alongY - free).norm(), 0, 1e-12);
+  EXPECT_NEAR(std::abs(longAxis(alongX).x()), 1, 1e-9);
+  EXPECT_NEAR(alongX.determinant(), free.determinant(), 1e-12);
+  MetricOptions o;
+  o.saddleShape = 1;
+  o.shapeBlend = 0;
+  const std::vector<Hessian2> hs{h, h, h};
+  const std::vector<Vec2> walls{Vec2::Zero(), Vec2(0, 1), Vec2(1, 0)};
+  const auto rows = saddleLatticeRows(hs, o, walls);
+  EXPECT_NEAR(rows[0].x(), -1, 1e-9);  // row along y: (cos 2α, sin 2α) = (−1, 0)
+  EXPECT_NEAR(rows[1].x(), -1, 1e-9);
+  EXPECT_NEAR(rows[2].x(), 1, 1e-9);  // row along x
+}
+
+TEST(MetricFromHessian, WallTangentsAreZeroInsideAndAtCorners) {
+  const Mesh2 mesh = fem::unitSquareMesh(4);
+  const auto t = wallTangents(mesh);
+  int sides = 0;
+  for (int v = 0; v < mesh.numVertices(); ++v) {
+    const Vec2 p = mesh.vertices[v];
+    const bool onX = p.y() == 0 || p.y() == 1, onY = p.x() == 0 || p.x() == 1;
+    if (onX && onY) {
+      EXPECT_EQ(t[v].norm(), 0) << "corner " << p.transpose();
+    } else if (onX || onY) {
+      EXPECT_NEAR(std::abs(onX ? t[v].x() : t[v].y()), 1, 1e-12) << p.transpose();
+      ++sides;
+    } else {
+      EXPECT_EQ(t[v].norm(), 0);
+    }
+  }
+  EXPECT_EQ(sides, 12);
+}
+
+TEST(MetricFromHessian, SingularCornerGradingEndsTheGrading) {
+  // L-shape, sizes h = A |x − x0|^σ (σ = ⅔: u ~ r^(2/3)) around x0, the corner's own size hc.
+  // x0 = (0, 0), the reentrant corner: the grading's end is r* = A^(1/(1−σ)) = A³, and the corner
+  // gets max(β r*, hc/4); every other vertex keeps its metric. x0 = (−1, −1), a convex corner:
+  // nothing changes (no singularity there for smooth data).
+  const Mesh2 mesh = fem::structuredMesh(fem::makeProblem("lshape").domain, 40, 40);
+  const double a = 0.05, sigma = 2.0 / 3, rStar = a * a * a, beta = 0.25;
+  const auto field = [&](Vec2 x0, double hc) {
+    std::vector<Metric2> m(mesh.numVertices());
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      const double r = (mesh.vertices[v] - x0).norm();
+      m[v] = Metric2::isotropic(r > 0 ? a * std::pow(r, sigma) : hc);
+    }
+    return m;
+  };
+  const auto size = [](const Metric2& m) { return std::pow(m.det(), -0.25); };
+  int corner = -1;
+  for (int v = 0; v < mesh.numVertices(); ++v)
+    if (mesh.vertices[v].norm() == 0) corner = v;
+  ASSERT_GE(corner, 0);
+  for (const double hc : {5e-5, 1e-3}) {
+    auto m = field(Vec2::Zero(), hc);
+    const auto before = m;
+    EXPECT_EQ(gradeSingularCorners(mesh, m, beta, 0), 1);
+    EXPECT_NEAR(size(m[corner]) / std::max(beta * rStar, 0.25 * hc), 1, 1e-6) << hc;
+    for (int v = 0; v < mesh.numVertices(); ++v) {
+      if (v == corner) continue;
+      EXPECT_EQ(size(m[v]), size(before[v]));
+    }
+  }
+  auto fine = field(Vec2::Zero(), 1e-5);  // already below β r*: unchanged
+  EXPECT_EQ(gradeSingularCorners(mesh, fine, beta, 0), 0);
+  auto convex = field(Vec2(-1, -1), 1e-3);
+  EXPECT_EQ(gradeSingularCorners(mesh, convex, beta, 0), 0);
+  EXPECT_THROW(gradeSingularCorners(mesh, fine, 0, 0), InputError);
 }
