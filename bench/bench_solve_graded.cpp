@@ -17,6 +17,7 @@
 #include "ablmg/fem/test_problems.hpp"
 #include "ablmg/io/medit.hpp"
 
+#include <Eigen/CholmodSupport>
 #include <benchmark/benchmark.h>
 #include <cholmod.h>
 
@@ -135,18 +136,9 @@ void BM_Analyse(benchmark::State& state) {
   c.print = 0;
   c.nmethods = 1;
   c.method[0].ordering = k == 2 ? CHOLMOD_NESDIS : CHOLMOD_GIVEN;
-  cholmod_sparse v{};
-  v.nrow = v.ncol = std::size_t(A.rows());
-  v.nzmax = std::size_t(A.nonZeros());
-  v.p = A.outerIndexPtr();
-  v.i = A.innerIndexPtr();
-  v.x = A.valuePtr();
-  v.stype = -1;
-  v.itype = CHOLMOD_INT;
-  v.xtype = CHOLMOD_REAL;
-  v.dtype = CHOLMOD_DOUBLE;
-  v.sorted = 1;
-  v.packed = 1;
+  A.makeCompressed();
+  cholmod_sparse v = Eigen::viewAsCholmod(Eigen::Ref<Eigen::SparseMatrix<double>>(A));  // no copy
+  v.stype = -1;                                                                         // the lower triangle is read
   for (auto _ : state) {
     std::vector<int> perm = k == 0   ? geometricNestedDissection(A, points)
                             : k == 1 ? metisNestedDissection(A)
