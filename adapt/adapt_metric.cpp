@@ -73,13 +73,14 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
   if (dual) {  // ∩ M(z; φ_z N): the dual's own metric, same norm and bounds
     MetricOptions mz = mo;
     mz.targetVertices = options.dualShare * targetVertices;
+    std::span<const Hessian2> hz = dualHessians;
+    std::vector<Hessian2> weighted;
     if (options.dualGoal) {  // |Δu_h| |H_z|: the dual's curvature where u's gradient error is
-      std::vector<Hessian2> weighted(dualHessians.begin(), dualHessians.end());
+      weighted.assign(dualHessians.begin(), dualHessians.end());
       for (std::size_t v = 0; v < weighted.size(); ++v) weighted[v] *= std::abs(hessians[v].trace());
-      metric = intersectFields(metric, metricFromHessians(mesh, weighted, mz));
-    } else {
-      metric = intersectFields(metric, metricFromHessians(mesh, dualHessians, mz));
+      hz = weighted;
     }
+    metric = intersectFields(metric, metricFromHessians(mesh, hz, mz));
   }
   if (options.cornerGrading > 0) gradeSingularCorners(mesh, metric, options.cornerGrading, mo.hmin);
   mo.targetVertices = targetVertices;

@@ -209,7 +209,8 @@ std::vector<double> cycleTargets(const AdaptOptions& options) {
 /// AdaptOptions::stopSizeAim: when cycle `row` is the last pass of its size (position s of
 /// `targets`), the next size and its passes become the predicted size for the stop criteria
 /// if that is below the schedule's next size; when those passes end the schedule, its final
-/// size follows them (for a miss). `cycles`: the rows before `row`.
+/// size follows them (for a miss). `cycles`: the rows before `row`. Without a stop criterion
+/// (stopL2, stopH1 ≤ 0) nothing changes.
 void aimAtStop(const AdaptOptions& options, const std::vector<CycleReport>& cycles, const CycleReport& row,
                std::vector<double>& targets, int s) {
   const std::size_t next = std::size_t(s) + 1;
@@ -347,8 +348,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
       reportStage(options, "metric", s, cycles, row.vertices);
-      const bool aim = options.stopL2 > 0 || options.stopH1 > 0;
-      if (aim) aimAtStop(options, report.cycles, row, targets, s);
+      aimAtStop(options, report.cycles, row, targets, s);
       cycles = int(targets.size());
       const DualCorrection dual = dualCorrection(current.mesh, sol.u, poisson, options);
       AdaptedMetric a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);
@@ -356,7 +356,7 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
       const int skipTo = repeatsToSkip(options, targets, s, row.metricChange);
       if (skipTo > s) {
         s = skipTo;
-        if (aim) aimAtStop(options, report.cycles, row, targets, s);
+        aimAtStop(options, report.cycles, row, targets, s);
         cycles = int(targets.size());
         if (target(s + 1) != target(s))
           a = metricFromRecovered(current.mesh, hessians, target(s + 1), options, dual.scale, dual.hessians);

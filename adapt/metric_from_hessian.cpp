@@ -56,9 +56,7 @@ bool wallFlip(const Vec2& pos, const Vec2& wall) {
   const Vec2 c1 = (pos + Vec2(-pos.y(), pos.x())) / std::sqrt(2.0);
   return std::abs(c1.dot(wall)) < std::abs(c1.x() * wall.y() - c1.y() * wall.x());
 }
-}  // namespace
 
-namespace {
 /// Per vertex: 0 interior, 1 on a straight (turn ≤ 20°) stretch of the boundary, 2 at a convex
 /// corner, 3 at a reentrant one (interior angle > π: the boundary turns right, the domain being on
 /// its left, or turns back on itself as at a slit's tip); `tangent` gets the mean unit tangent of
@@ -101,10 +99,10 @@ int gradeSingularCorners(const Mesh2& mesh, std::vector<Metric2>& metric, double
                 "gradeSingularCorners: " << metric.size() << " metrics for " << n << " vertices");
   std::vector<Vec2> tangent;
   const std::vector<char> kind = boundaryKinds(mesh, tangent);
+  if (std::find(kind.begin(), kind.end(), char(3)) == kind.end()) return 0;
+  // Edge lists in triangle order (duplicates included): the rings' order, and so the fit's sums,
+  // follow it.
   std::vector<std::vector<int>> adj(n);
-  bool any = false;
-  for (int v = 0; v < n; ++v) any = any || kind[v] == 3;
-  if (!any) return 0;
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) adj[t[k]].push_back(t[(k + 1) % 3]), adj[t[(k + 1) % 3]].push_back(t[k]);
   std::vector<int> seen(n, -1);
