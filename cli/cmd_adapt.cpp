@@ -109,6 +109,7 @@ Args parseArgs(const std::vector<std::string>& args) {
       haveTargets = true;
     } else if (key == "--vertices") {
       a.finalVertices = parseNumber(value(), "adapt: --vertices");
+      ABLMG_REQUIRE(a.finalVertices > 0, "adapt: --vertices must be > 0, got " << a.finalVertices);
     } else if (key == "--start-vertices") {
       a.schedule.startVertices = parseNumber(value(), "adapt: --start-vertices");
     } else if (key == "--growth") {

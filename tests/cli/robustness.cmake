@@ -18,3 +18,9 @@ add_test(NAME cli_adapt_one_size_rates_na COMMAND ablmg adapt --problem smooth -
                                                   --out-dir ${_rdir}/one_size)
 set_tests_properties(cli_adapt_one_size_rates_na PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "L2 n/a  H1 n/a  L2interp n/a"
                      FAIL_REGULAR_EXPRESSION "nan")
+# --vertices 0 or negative names the flag and its value (it read as "--vertices is required").
+ablmg_cli_failure(adapt_vertices_zero "adapt: --vertices must be > 0, got 0" adapt --problem peak --vertices 0 --out-dir ${_rdir}/vertices_zero)
+# An SPD tensor whose smaller eigenvalue is lost to round-off is named as such, not "not positive definite".
+file(WRITE ${_rdir}/aniso_1e10.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 3\n1e10 0 1e-10\n1 0 1\n1 0 1\n1 0 1\n1 0 1\nEnd\n")
+ablmg_cli_failure(remesh_tensor_too_anisotropic "aniso_1e10.sol:6: tensor of vertex 1: tensor \\(1e\\+10, 0, 1e-10\\) is too anisotropic"
+                  remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_rdir}/aniso_1e10.sol -out ${_rdir}/aniso_1e10.mesh)
