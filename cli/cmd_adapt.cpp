@@ -5,7 +5,7 @@
 //               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
-//               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+//               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
 //               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
@@ -141,6 +141,8 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
     } else if (key == "--dual-weight") {
       a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
+    } else if (key == "--h1-weight") {
+      a.options.h1Weight = parseNumber(value(), "adapt: --h1-weight");
     } else if (key == "--dual-share") {
       a.options.dualShare = parseNumber(value(), "adapt: --dual-share");
     } else if (key == "--dual-goal") {
@@ -208,8 +210,8 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << key
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --dual-goal "
-                           "--max-aniso --seed "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
+                           "--dual-share --dual-goal --max-aniso --seed "
                            "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
                            "--repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
@@ -321,6 +323,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
                                                                     : nlohmann::json(a.options.metric.hmaxUniform)},
           {"l2_share", a.options.l2Share},
           {"dual_weight", a.options.dualWeight},
+          {"h1_weight", a.options.h1Weight},
           {"dual_share", a.options.dualShare},
           {"dual_goal", a.options.dualGoal},
           {"warm_start", a.options.warmStart},
@@ -341,7 +344,7 @@ const char* kAdaptHelp =
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
-                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
                    [--dual-goal on|off]
                    [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
                    [--lattice short|axes|long]
