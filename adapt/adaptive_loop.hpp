@@ -276,6 +276,8 @@ struct CycleReport {
   /// error measure that needs no exact solution; compare with l2Interp where both exist.
   double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
+  /// Wall seconds: the solve, the Hessian recovery of u_h, the next metric (with the unit-load
+  /// dual's solve and recovery when the metric uses it: dualWeight, dualShare), the mesh.
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
   double tAssembly = 0, tOrdering = 0, tFactor = 0;  ///< the parts of tSolve
   double tErrors = 0;                                ///< computeErrors (0 without an exact solution)

@@ -35,7 +35,7 @@ struct ExactSolution {
   /// Optional: u and ∇u at once (returns u, writes ∇u), for solutions whose two share work (a
   /// corner's r and θ). It must give the same values as u and grad; computeErrors then calls it
   /// instead of them.
-  ValueGradientFn valueAndGrad;
+  ValueGradientFn valueAndGrad = {};
 };
 
 struct ErrorReport {

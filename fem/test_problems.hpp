@@ -44,8 +44,8 @@ struct TestProblem {
   Domain domain;
   ScalarFn u;
   GradientFn grad;
-  ScalarFn f;                    ///< −Δu
-  ValueGradientFn valueAndGrad;  ///< u and ∇u at once where they share work (else empty)
+  ScalarFn f;                         ///< −Δu
+  ValueGradientFn valueAndGrad = {};  ///< u and ∇u at once where they share work (else empty)
 
   ExactSolution exact() const { return {u, grad, true, valueAndGrad}; }
   /// κ = 1, f, Dirichlet data u on every boundary tag.
