@@ -28,6 +28,8 @@ void validate(const AdaptOptions& o) {
                                                                                            << o.l2Share << ")");
   ABLMG_REQUIRE(o.dualWeight >= 0 && std::isfinite(o.dualWeight),
                 "adapt options: dualWeight must be >= 0 (got " << o.dualWeight << ")");
+  ABLMG_REQUIRE(o.h1Weight >= 0 && std::isfinite(o.h1Weight),
+                "adapt options: h1Weight must be >= 0 (got " << o.h1Weight << ")");
   ABLMG_REQUIRE(o.repeatMinChange >= 0 && o.stopRepeatMinChange >= 0 && std::isfinite(o.stopRepeatMinChange),
                 "adapt options: repeatMinChange and stopRepeatMinChange must be >= 0 (got "
                     << o.repeatMinChange << " and " << o.stopRepeatMinChange << ")");
@@ -100,15 +102,16 @@ struct DualCorrection {
 DualCorrection dualCorrection(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
                               const AdaptOptions& options) {
   DualCorrection d;
-  if ((options.dualWeight <= 0 && options.dualShare <= 0) ||
-      (problem.dirichlet.empty() && !problem.hasDirichletDefault))
+  const std::span<const double> uv(u.data(), std::size_t(u.size()));
+  const bool hasDual = !problem.dirichlet.empty() || problem.hasDirichletDefault;
+  const double dualWeight = hasDual ? options.dualWeight : 0.0;
+  if (dualWeight <= 0 && (options.dualShare <= 0 || !hasDual)) {
+    if (options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, {}, 0, options.h1Weight);
     return d;
+  }
   const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
   const std::span<const double> zv(z.u.data(), std::size_t(z.u.size()));
-  if (options.dualWeight > 0)
-    d.scale = adapt::dualWeightScale(
-        mesh, dualWeightedIndicators(mesh, std::span<const double>(u.data(), std::size_t(u.size())), zv),
-        options.dualWeight);
+  if (dualWeight > 0 || options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, zv, dualWeight, options.h1Weight);
   if (options.dualShare > 0) d.hessians = recoverHessians(mesh, zv, options.hessian);
   return d;
 }

@@ -87,10 +87,13 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
   readHeader(s, dim, true);
   Mesh2 mesh;
   std::vector<int> vertexLine;  // line of each vertex (for z ≠ 0 messages)
-  bool haveVertices = false;
+  bool haveVertices = false, haveEnd = false;
   while (!s.atEnd()) {
     const auto kw = lower(s.next("section keyword"));
-    if (kw == "end") break;
+    if (kw == "end") {
+      haveEnd = true;
+      break;
+    }
     if (kw == "vertices") {
       ABLMG_REQUIRE(!haveVertices, s.where() << "second Vertices section");
       haveVertices = true;
@@ -161,6 +164,9 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
     }
   }
   ABLMG_REQUIRE(haveVertices, name << ": no Vertices section");
+  // Every writer ends with End (medit, gmsh, FreeFem++, MMG, meshio): without it the file was
+  // cut between two sections, and what was read would be meshed as if it were whole.
+  ABLMG_REQUIRE(haveEnd, name << ":" << s.line() << ": no End keyword (truncated file?)");
   return mesh;
 }
 
