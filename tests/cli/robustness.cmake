@@ -37,3 +37,7 @@ file(WRITE ${_rdir}/hole_off_grid.json "{\"domain\": {\"loops\": [[[0,0],[2,0],[
 add_test(NAME cli_adapt_uniform_off_grid COMMAND ablmg adapt ${_rdir}/hole_off_grid.json --target-vertices 300,600 --vtu off
                                                  --out-dir ${_rdir}/hole_off_grid)
 set_tests_properties(cli_adapt_uniform_off_grid PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "Uniform: skipped from N=300 on \\(structuredMesh: .* is not a node")
+# A gmsh .msh passed as medit: the error names the format and the export.
+file(WRITE ${_rdir}/gmsh.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
+ablmg_cli_failure(remesh_gmsh_msh "gmsh.msh:1: expected MeshVersionFormatted, got '.meshformat' \\(a gmsh .msh file: write medit with gmsh -format mesh\\)"
+                  remesh -in ${_rdir}/gmsh.msh -hsiz 0.1 -out ${_rdir}/gmsh_msh.mesh)
