@@ -28,6 +28,8 @@ void validate(const AdaptOptions& o) {
                                                                                            << o.l2Share << ")");
   ABLMG_REQUIRE(o.dualWeight >= 0 && std::isfinite(o.dualWeight),
                 "adapt options: dualWeight must be >= 0 (got " << o.dualWeight << ")");
+  ABLMG_REQUIRE(o.h1Weight >= 0 && std::isfinite(o.h1Weight),
+                "adapt options: h1Weight must be >= 0 (got " << o.h1Weight << ")");
   ABLMG_REQUIRE(o.repeatMinChange >= 0 && o.stopRepeatMinChange >= 0 && std::isfinite(o.stopRepeatMinChange),
                 "adapt options: repeatMinChange and stopRepeatMinChange must be >= 0 (got "
                     << o.repeatMinChange << " and " << o.stopRepeatMinChange << ")");
@@ -97,28 +99,31 @@ struct DualCorrection {
   std::vector<double> scale;
   std::vector<Hessian2> hessians;
 };
-bool wantsDual(const fem::PoissonProblem& problem, const AdaptOptions& options) {
-  return (options.dualWeight > 0 || options.dualShare > 0) &&
-         (!problem.dirichlet.empty() || problem.hasDirichletDefault);
-}
-/// u's recovered Hessians and, with `withDual` (and wantsDual), the dual's correction: the
+bool hasDual(const fem::PoissonProblem& problem) { return !problem.dirichlet.empty() || problem.hasDirichletDefault; }
+/// u's recovered Hessians and, with `withMetric` (not the last cycle), the correction of the next
+/// metric: the H1 weight's density factor, and when the dual is used (dualWeight, dualShare) the
 /// unit-load dual solved (its wall seconds in `tDual`) and, with dualShare, recovered with u in
-/// one pass (recoverHessians of two fields: the patches and their QR shared).
+/// one pass (recoverHessians of two fields: the patches and their QR shared, the same Hessians).
 std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
-                                      bool withDual, const AdaptOptions& options, DualCorrection& d, double& tDual) {
+                                      bool withMetric, const AdaptOptions& options, DualCorrection& d, double& tDual) {
   const std::span<const double> uv(u.data(), std::size_t(u.size()));
   tDual = 0;
-  if (!withDual || !wantsDual(problem, options)) return recoverHessians(mesh, uv, options.hessian);
+  if (!withMetric) return recoverHessians(mesh, uv, options.hessian);
+  const double dualWeight = hasDual(problem) ? options.dualWeight : 0.0;
+  if (dualWeight <= 0 && (options.dualShare <= 0 || !hasDual(problem))) {
+    if (options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, {}, 0, options.h1Weight);
+    return recoverHessians(mesh, uv, options.hessian);
+  }
   const Stopwatch watch;
   const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
   tDual = watch.seconds();
   const std::span<const double> zv(z.u.data(), std::size_t(z.u.size()));
-  if (options.dualWeight > 0)
-    d.scale = adapt::dualWeightScale(mesh, dualWeightedIndicators(mesh, uv, zv), options.dualWeight);
+  if (dualWeight > 0 || options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, zv, dualWeight, options.h1Weight);
   if (!(options.dualShare > 0)) return recoverHessians(mesh, uv, options.hessian);
   auto both = recoverHessians(mesh, uv, zv, options.hessian);
   d.hessians = std::move(both[1]);
   return std::move(both[0]);
+}
 }
 void requireMeshIndependent(const AdaptProblem& p) {
   const auto check = [](const fem::ScalarData& d, const std::string& what) {

@@ -64,6 +64,27 @@ std::vector<double> recoveryErrors(const Mesh2& mesh, std::span<const double> v)
 }
 }  // namespace
 
+std::vector<double> recoveryErrorIndicators(const Mesh2& mesh, std::span<const double> u) {
+  ABLMG_REQUIRE(long(u.size()) == long(mesh.numVertices()),
+                "recoveryErrorIndicators: " << u.size() << " values for " << mesh.numVertices() << " vertices");
+  return recoveryErrors(mesh, u);
+}
+
+std::vector<double> densityWeightScale(const Mesh2& mesh, std::span<const double> u, std::span<const double> z,
+                                       double dualGamma, double h1Gamma) {
+  ABLMG_REQUIRE(
+      dualGamma >= 0 && h1Gamma >= 0 && dualGamma + h1Gamma > 0 && std::isfinite(dualGamma + h1Gamma),
+      "densityWeightScale: exponents must be >= 0, not both 0 (got " << dualGamma << " and " << h1Gamma << ")");
+  if (!(dualGamma > 0)) return dualWeightScale(mesh, recoveryErrorIndicators(mesh, u), h1Gamma);
+  // η_T ε_T^(γ₁/γ), raised to γ by dualWeightScale: ε^(γ+γ₁) ε_z^γ.
+  std::vector<double> eta = dualWeightedIndicators(mesh, u, z);
+  if (h1Gamma > 0) {
+    const std::vector<double> eu = recoveryErrors(mesh, u);
+    for (std::size_t t = 0; t < eta.size(); ++t) eta[t] *= std::pow(eu[t], h1Gamma / dualGamma);
+  }
+  return dualWeightScale(mesh, eta, dualGamma);
+}
+
 std::vector<double> dualWeightedIndicators(const Mesh2& mesh, std::span<const double> u, std::span<const double> z) {
   ABLMG_REQUIRE(long(u.size()) == long(mesh.numVertices()) && long(z.size()) == long(mesh.numVertices()),
                 "dualWeightedIndicators: " << u.size() << " and " << z.size() << " values for " << mesh.numVertices()

@@ -76,6 +76,25 @@
 /// share in the layer (|Δu| ~ 10⁴ there) with sizes of aspect ≈ 1, and its L2 error rises 20×
 /// (`ablmg adapt --problem tanhlayer --vertices 20000 --max-aniso 1e4`: 1.2·10⁻⁶ → 2.5–2.8·10⁻⁵).
 /// Off by default.
+///
+/// H1 weighting (AdaptOptions::h1Weight). The same equidistribution for the H1 error: with ε_T =
+/// ‖G u_h − ∇u_h‖_T (the Zienkiewicz–Zhu estimate of ‖∇(u − u_h)‖_T) and ε_T² ∝ w_u/d² per triangle,
+/// Σ ε_T² at fixed N is least when ε_T is the same everywhere; d ← d (ε_T/ε̄)^γ₁ moves towards it
+/// (γ₁ = 1 in one step on a fixed w). Where the Hessian model is right (a resolved feature, the
+/// asymptotic regime) the mesh it builds already equidistributes ε and the factor is ≈ 1; it acts
+/// where the model is wrong: a feature the current mesh has not resolved (the peak's core before
+/// 10⁴ vertices), the recovered Hessian at a singular corner (a patch average). With ε_T ∝ √w_u/d
+/// (w_u ∝ λ² for the H1 error, λ = √det|H|) a fixed point of the passes with the dual weight has
+/// d^(1+2γ+γ₁) ∝ λ w^γ w_u^(γ₁/2): where the model holds (w_u ∝ λ², w ∝ λ for a smooth dual)
+/// d ∝ λ^((1+γ+γ₁)/(1+2γ+γ₁)), so γ₁ pulls back towards p = ∞'s λ (the H1-optimal density)
+/// where the dual weight pulls towards p = 2's (⅚ at (¼, 0), 0.92 at (⅛, ¼)).
+/// Measured (`ablmg adapt` at examples/compare_freefem/run.sh's sizes to 0.6–1.1·10⁵ vertices, worst
+/// H1 ratio to FreeFem++ over the cycles ≥ 5·10³ vertices; docs/experiments.md has the whole
+/// table): at hgrad 1.5, (γ, γ₁) = (¼, 0) → (⅛, ¼): the L-shape 0.893 → 0.885, 5π/4 0.892 → 0.885,
+/// 7π/4 0.890 → 0.883, the slit 0.898 → 0.893, the peak 0.881 → 0.877, multiple 0.844 → 0.811, the
+/// layer 0.51 → 0.41; the steep front's L2 0.57 → 0.79 (what γ is for; its H1 0.81 → 0.78). z's
+/// factor alone costs the corners H1 (the L-shape at 7.6·10³ vertices, hgrad 1.25: 0.893 with (¼, 0), 0.882
+/// with u's factor only, (0, ¼)); γ₁ = ½ or ¾ gains nothing more (the slit 0.897 / 0.899).
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/fem/poisson_problem.hpp"
 #include <span>
@@ -89,6 +108,16 @@ fem::PoissonProblem unitLoadDual(const fem::PoissonProblem& problem);
 
 /// η_T above, per triangle of `mesh`; u and z per vertex (size numVertices()).
 std::vector<double> dualWeightedIndicators(const Mesh2& mesh, std::span<const double> u, std::span<const double> z);
+
+/// ε_T = ‖G u_h − ∇u_h‖_T per triangle (G as above): the Zienkiewicz–Zhu estimate of the local
+/// H1 error of u_h, the indicator of AdaptOptions::h1Weight ("H1 weighting" above).
+std::vector<double> recoveryErrorIndicators(const Mesh2& mesh, std::span<const double> u);
+
+/// The loop's density factor for dualWeight γ and h1Weight γ₁ (both ≥ 0, not both 0): s_v = mean
+/// over the triangles at v of (η_T/η̄)^γ (ε_T/ε̄)^γ₁ = (ε_T/ε̄)^(γ+γ₁) (ε^z_T/ε̄^z)^γ (geometric
+/// means, as dualWeightScale), clamped to [1/kMaxFactor, kMaxFactor]; z is read only when γ > 0.
+std::vector<double> densityWeightScale(const Mesh2& mesh, std::span<const double> u, std::span<const double> z,
+                                       double dualGamma, double h1Gamma);
 
 /// Largest factor (and 1/kMaxFactor the smallest) of dualWeightScale.
 inline constexpr double kMaxFactor = 2.0;

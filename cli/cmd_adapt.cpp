@@ -5,7 +5,7 @@
 //               (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
 //                | [--cycles K] --target-vertices N1,N2,...)
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
-//               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+//               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
 //               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
@@ -16,10 +16,11 @@
 // (the last N repeats when K exceeds the list).
 // --p selects the Lp norm the metric is optimal for (default inf, FreeFem/BAMG's L∞ metric: the
 // H1-optimal grading at singular points; 2: L2).
-// --norm h1 makes it optimal for the W^{1,p} seminorm of the interpolation error instead
-// (p = 2, its default: H1; shape |H|², see adapt/metric_from_hessian.hpp, which also says why it loses on
-// meshes whose elements are not oriented along |H|), and --shape-blend W ∈ [0, 1] sets the
-// shape to (|H|/√det|H|)^(1+W) (0 the Lp shape, 1 the H1 shape) keeping the norm's density.
+// --norm h1 makes its density optimal for the W^{1,p} seminorm of the interpolation error instead
+// (p = 2, its default: H1), and --shape-blend W ∈ [0, 1] sets the shape to (|H|/√det|H|)^(1+W)
+// (0 the Lp shape, 1 the H1 shape |H|², which loses on meshes whose elements are not oriented
+// along |H|: adapt/metric_from_hessian.hpp) keeping the norm's density; the default W is the
+// loop's 0.05 for both norms.
 //
 // Writes DIR/convergence.csv (the header kCsvHeader, more columns after it, one row per
 // cycle), DIR/convergence.json (options, rows, fitted rates), DIR/cycle_K.vtu (mesh, u_h,
@@ -78,128 +79,192 @@ struct Args {
   double referenceVertices = -1;
 };
 
+/// The parser's state: the arguments, the position in them, and which options were given (some
+/// defaults depend on others: --norm h1 picks its own p unless it is given).
+struct ArgCursor {
+  const std::vector<std::string>& args;
+  std::size_t i = 0;
+  bool haveTargets = false, pGiven = false;
+  const std::string& key() const { return args[i]; }
+  const std::string& value() {
+    ABLMG_REQUIRE(i + 1 < args.size(), "adapt: " << args[i] << " needs a value");
+    return args[++i];
+  }
+  double number(Infinity inf = Infinity::Refused) {
+    const std::string name = "adapt: " + args[i];
+    return parseNumber(value(), name, inf);
+  }
+  /// The value as a number in [lo, hi], named in the error.
+  double numberIn(double lo, double hi) {
+    const std::string name = args[i];
+    const double v = number();
+    ABLMG_REQUIRE(v >= lo && v <= hi, "adapt: " << name << " must be in [" << lo << ", " << hi << "], got " << v);
+    return v;
+  }
+  /// The value as an integer in [lo, hi], named in the error.
+  int integerIn(int lo, int hi) {
+    const std::string name = args[i];
+    const double v = number();
+    ABLMG_REQUIRE(v >= lo && v <= hi && v == std::floor(v),
+                  "adapt: " << name << " must be an integer in " << lo << ".." << hi << ", got " << v);
+    return int(v);
+  }
+};
+
+/// The problem and the schedule: --problem --param --cycles --target-vertices --vertices
+/// --start-vertices --growth --passes --passes-up-to. False if `c.key()` is none of them.
+bool parseScheduleOption(ArgCursor& c, Args& a) {
+  const std::string& key = c.key();
+  if (key == "--problem") {
+    a.problem = c.value();
+  } else if (key == "--param") {
+    const std::string kv = c.value();
+    const auto eq = kv.find('=');
+    ABLMG_REQUIRE(eq != std::string::npos && eq > 0, "adapt: --param expects KEY=VALUE, got '" << kv << "'");
+    a.params[kv.substr(0, eq)] = parseNumber(kv.substr(eq + 1), "adapt: --param " + kv.substr(0, eq));
+  } else if (key == "--cycles") {
+    a.options.cycles = c.integerIn(1, 1000);
+  } else if (key == "--target-vertices") {
+    a.options.targetVertices.clear();
+    std::stringstream ss(c.value());
+    std::string item;
+    while (std::getline(ss, item, ','))
+      a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
+    c.haveTargets = true;
+  } else if (key == "--vertices") {
+    a.finalVertices = c.number();
+    ABLMG_REQUIRE(a.finalVertices > 0, "adapt: --vertices must be > 0, got " << a.finalVertices);
+  } else if (key == "--start-vertices") {
+    a.schedule.startVertices = c.number();
+  } else if (key == "--growth") {
+    a.schedule.growth = c.number();
+  } else if (key == "--passes") {
+    a.schedule.passes = c.integerIn(1, 20);
+  } else if (key == "--passes-up-to") {
+    a.schedule.passesUpTo = c.number();
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// The metric: --p --norm --shape-blend --hgrad --hessian --hmin --hmax --hmax-uniform
+/// --max-aniso --dual-weight --h1-weight --dual-share --dual-goal --l2-share --saddle-shape --corner-grading.
+/// False if `c.key()` is none of them.
+bool parseMetricOption(ArgCursor& c, Args& a) {
+  const std::string& key = c.key();
+  auto& metric = a.options.metric;
+  if (key == "--p") {
+    metric.p = c.number(Infinity::Allowed);
+    c.pGiven = true;
+  } else if (key == "--norm") {
+    metric.norm = adapt::parseErrorNorm(c.value());
+    // --norm h1 keeps the loop's shape blend (0.05): the H1 shape (--shape-blend 1) stretches
+    // elements by (λ1/λ2)² and had 1.2-8x the H1 error of the blend at 4·10³ vertices on the
+    // library, errors rising with N on the line singularity and the layer (docs/config.md).
+    // Without --p: p = 2, the H1 seminorm itself (the default p = inf would make it W^{1,inf},
+    // whose grading h ~ r^{4/3} crowds the vertices into a corner singularity)
+    if (metric.norm == adapt::ErrorNorm::H1 && !c.pGiven) metric.p = 2;
+  } else if (key == "--shape-blend") {
+    metric.shapeBlend = c.number();
+  } else if (key == "--hgrad") {
+    a.options.hgrad = c.number();
+  } else if (key == "--hessian") {
+    a.options.hessian = adapt::parseHessianMethod(c.value());
+  } else if (key == "--hmin") {
+    metric.hmin = c.number();
+  } else if (key == "--hmax") {
+    metric.hmax = c.number(Infinity::Allowed);
+  } else if (key == "--hmax-uniform") {
+    metric.hmaxUniform = c.number(Infinity::Allowed);
+  } else if (key == "--max-aniso") {
+    metric.maxAnisotropy = c.number();
+  } else if (key == "--dual-weight") {
+    a.options.dualWeight = c.number();
+  } else if (key == "--h1-weight") {
+    a.options.h1Weight = c.number();
+  } else if (key == "--dual-share") {
+    a.options.dualShare = c.number();
+  } else if (key == "--dual-goal") {
+    a.options.dualGoal = parseOnOff(c.value(), "adapt: --dual-goal");
+  } else if (key == "--l2-share") {
+    a.options.l2Share = c.number();
+  } else if (key == "--saddle-shape") {
+    metric.saddleShape = c.numberIn(0, 1);
+  } else if (key == "--corner-grading") {
+    a.options.cornerGrading = c.numberIn(0, 1);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// The loop and its mesher: --seed --stop-l2 --stop-h1 --stop-aim --warm-start
+/// --repeat-min-change --plateau-gain --lattice. False if `c.key()` is none of them.
+bool parseLoopOption(ArgCursor& c, Args& a) {
+  const std::string& key = c.key();
+  auto& placement = a.options.mesh.placement;
+  if (key == "--seed") {
+    placement.seed = std::uint64_t(parseInteger(c.value(), "adapt: --seed", 0, std::numeric_limits<long long>::max()));
+  } else if (key == "--stop-l2" || key == "--stop-h1") {
+    const double e = c.number();
+    ABLMG_REQUIRE(e > 0 && std::isfinite(e), "adapt: " << key << " must be a positive error, got " << e);
+    (key == "--stop-l2" ? a.options.stopL2 : a.options.stopH1) = e;
+  } else if (key == "--stop-aim") {
+    const double v = c.number();
+    ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --stop-aim must be in [0, 1] (0: off), got " << v);
+    a.options.stopSizeAim = v;
+  } else if (key == "--warm-start") {
+    a.options.warmStart = parseOnOff(c.value(), "adapt: --warm-start");
+  } else if (key == "--repeat-min-change") {
+    a.options.repeatMinChange = a.options.stopRepeatMinChange = c.numberIn(0, 10);
+  } else if (key == "--plateau-gain") {
+    const double g = c.number();
+    ABLMG_REQUIRE(g >= 0 && g < 1, "adapt: --plateau-gain must be in [0, 1), got " << g);
+    placement.plateauSteps = g > 0 ? 10 : 0;
+    placement.plateauGain = g;
+  } else if (key == "--lattice") {
+    placement.lattice.orientation = mesher::parseLatticeOrientation(c.value());
+  } else {
+    return false;
+  }
+  return true;
+}
+
+/// The outputs: --uniform --vtu --medit -v --out-dir --print-options --reference-vertices.
+/// False if `c.key()` is none of them.
+bool parseOutputOption(ArgCursor& c, Args& a) {
+  const std::string& key = c.key();
+  if (key == "--uniform") {
+    a.uniform = parseOnOff(c.value(), "adapt: --uniform");
+  } else if (key == "--vtu") {
+    a.vtu = parseOnOff(c.value(), "adapt: --vtu");
+  } else if (key == "--medit") {
+    a.medit = parseOnOff(c.value(), "adapt: --medit");
+  } else if (key == "-v") {
+    a.verbosity = int(parseInteger(c.value(), "adapt: -v", 0, 10));
+  } else if (key == "--out-dir") {
+    a.outDir = c.value();
+  } else if (key == "--print-options") {
+    a.printOptions = true;
+  } else if (key == "--reference-vertices") {
+    a.referenceVertices = c.number();
+    ABLMG_REQUIRE(a.referenceVertices == 0 || (a.referenceVertices >= 10 && a.referenceVertices <= 1e9),
+                  "adapt: --reference-vertices must be 0 (none) or in [10, 1e9], got " << a.referenceVertices);
+  } else {
+    return false;
+  }
+  return true;
+}
+
 Args parseArgs(const std::vector<std::string>& args) {
   Args a;
-  bool haveTargets = false, shapeBlendGiven = false, pGiven = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& key = args[i];
-    auto value = [&]() -> const std::string& {
-      ABLMG_REQUIRE(i + 1 < args.size(), "adapt: " << key << " needs a value");
-      return args[++i];
-    };
-    if (key == "--problem") {
-      a.problem = value();
-    } else if (key == "--param") {
-      const std::string kv = value();
-      const auto eq = kv.find('=');
-      ABLMG_REQUIRE(eq != std::string::npos && eq > 0, "adapt: --param expects KEY=VALUE, got '" << kv << "'");
-      a.params[kv.substr(0, eq)] = parseNumber(kv.substr(eq + 1), "adapt: --param " + kv.substr(0, eq));
-    } else if (key == "--cycles") {
-      const double c = parseNumber(value(), "adapt: --cycles");
-      ABLMG_REQUIRE(c >= 1 && c <= 1000 && c == std::floor(c),
-                    "adapt: --cycles must be an integer in 1..1000, got " << c);
-      a.options.cycles = int(c);
-    } else if (key == "--target-vertices") {
-      a.options.targetVertices.clear();
-      std::stringstream ss(value());
-      std::string item;
-      while (std::getline(ss, item, ','))
-        a.options.targetVertices.push_back(parseNumber(item, "adapt: --target-vertices"));
-      haveTargets = true;
-    } else if (key == "--vertices") {
-      a.finalVertices = parseNumber(value(), "adapt: --vertices");
-    } else if (key == "--start-vertices") {
-      a.schedule.startVertices = parseNumber(value(), "adapt: --start-vertices");
-    } else if (key == "--growth") {
-      a.schedule.growth = parseNumber(value(), "adapt: --growth");
-    } else if (key == "--passes") {
-      const double p = parseNumber(value(), "adapt: --passes");
-      ABLMG_REQUIRE(p >= 1 && p <= 20 && p == std::floor(p), "adapt: --passes must be an integer in 1..20, got " << p);
-      a.schedule.passes = int(p);
-    } else if (key == "--passes-up-to") {
-      a.schedule.passesUpTo = parseNumber(value(), "adapt: --passes-up-to");
-    } else if (key == "--p") {
-      a.options.metric.p = parseNumber(value(), "adapt: --p", Infinity::Allowed);
-      pGiven = true;
-    } else if (key == "--norm") {
-      a.options.metric.norm = adapt::parseErrorNorm(value());
-      // --norm h1 without --shape-blend: the norm's own shape (the default blend is the L2 norm's);
-      // without --p: p = 2, the H1 seminorm itself (the default p = inf would make it W^{1,inf},
-      // whose grading h ~ r^{4/3} crowds the vertices into a corner singularity)
-      if (a.options.metric.norm == adapt::ErrorNorm::H1 && !shapeBlendGiven) a.options.metric.shapeBlend.reset();
-      if (a.options.metric.norm == adapt::ErrorNorm::H1 && !pGiven) a.options.metric.p = 2;
-    } else if (key == "--shape-blend") {
-      a.options.metric.shapeBlend = parseNumber(value(), "adapt: --shape-blend");
-      shapeBlendGiven = true;
-    } else if (key == "--hgrad") {
-      a.options.hgrad = parseNumber(value(), "adapt: --hgrad");
-    } else if (key == "--hessian") {
-      a.options.hessian = adapt::parseHessianMethod(value());
-    } else if (key == "--hmin") {
-      a.options.metric.hmin = parseNumber(value(), "adapt: --hmin");
-    } else if (key == "--hmax") {
-      a.options.metric.hmax = parseNumber(value(), "adapt: --hmax", Infinity::Allowed);
-    } else if (key == "--dual-weight") {
-      a.options.dualWeight = parseNumber(value(), "adapt: --dual-weight");
-    } else if (key == "--dual-share") {
-      a.options.dualShare = parseNumber(value(), "adapt: --dual-share");
-    } else if (key == "--dual-goal") {
-      a.options.dualGoal = parseOnOff(value(), "adapt: --dual-goal");
-    } else if (key == "--l2-share") {
-      a.options.l2Share = parseNumber(value(), "adapt: --l2-share");
-    } else if (key == "--hmax-uniform") {
-      a.options.metric.hmaxUniform = parseNumber(value(), "adapt: --hmax-uniform", Infinity::Allowed);
-    } else if (key == "--max-aniso") {
-      a.options.metric.maxAnisotropy = parseNumber(value(), "adapt: --max-aniso");
-    } else if (key == "--seed") {
-      a.options.mesh.placement.seed =
-          std::uint64_t(parseInteger(value(), "adapt: --seed", 0, std::numeric_limits<long long>::max()));
-    } else if (key == "--uniform") {
-      a.uniform = parseOnOff(value(), "adapt: --uniform");
-    } else if (key == "--vtu") {
-      a.vtu = parseOnOff(value(), "adapt: --vtu");
-    } else if (key == "--stop-l2" || key == "--stop-h1") {
-      const double e = parseNumber(value(), "adapt: " + key);
-      ABLMG_REQUIRE(e > 0 && std::isfinite(e), "adapt: " << key << " must be a positive error, got " << e);
-      (key == "--stop-l2" ? a.options.stopL2 : a.options.stopH1) = e;
-    } else if (key == "--stop-aim") {
-      const double v = parseNumber(value(), "adapt: --stop-aim");
-      ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --stop-aim must be in [0, 1] (0: off), got " << v);
-      a.options.stopSizeAim = v;
-    } else if (key == "--warm-start") {
-      a.options.warmStart = parseOnOff(value(), "adapt: --warm-start");
-    } else if (key == "--saddle-shape") {
-      const double v = parseNumber(value(), "adapt: --saddle-shape");
-      ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --saddle-shape must be in [0, 1], got " << v);
-      a.options.metric.saddleShape = v;
-    } else if (key == "--corner-grading") {
-      const double b = parseNumber(value(), "adapt: --corner-grading");
-      ABLMG_REQUIRE(b >= 0 && b <= 1, "adapt: --corner-grading must be in [0, 1], got " << b);
-      a.options.cornerGrading = b;
-    } else if (key == "--repeat-min-change") {
-      const double c = parseNumber(value(), "adapt: --repeat-min-change");
-      ABLMG_REQUIRE(c >= 0 && c <= 10, "adapt: --repeat-min-change must be in [0, 10], got " << c);
-      a.options.repeatMinChange = a.options.stopRepeatMinChange = c;
-    } else if (key == "--plateau-gain") {
-      const double g = parseNumber(value(), "adapt: --plateau-gain");
-      ABLMG_REQUIRE(g >= 0 && g < 1, "adapt: --plateau-gain must be in [0, 1), got " << g);
-      a.options.mesh.placement.plateauSteps = g > 0 ? 10 : 0;
-      a.options.mesh.placement.plateauGain = g;
-    } else if (key == "--lattice") {
-      a.options.mesh.placement.lattice.orientation = mesher::parseLatticeOrientation(value());
-    } else if (key == "--medit") {
-      a.medit = parseOnOff(value(), "adapt: --medit");
-    } else if (key == "-v") {
-      a.verbosity = int(parseInteger(value(), "adapt: -v", 0, 10));
-    } else if (key == "--out-dir") {
-      a.outDir = value();
-    } else if (key == "--print-options") {
-      a.printOptions = true;
-    } else if (key == "--reference-vertices") {
-      a.referenceVertices = parseNumber(value(), "adapt: --reference-vertices");
-      ABLMG_REQUIRE(a.referenceVertices == 0 || (a.referenceVertices >= 10 && a.referenceVertices <= 1e9),
-                    "adapt: --reference-vertices must be 0 (none) or in [10, 1e9], got " << a.referenceVertices);
-    } else if (!key.empty() && key[0] != '-') {
+  ArgCursor c{args};
+  for (; c.i < args.size(); ++c.i) {
+    const std::string& key = c.key();
+    if (parseScheduleOption(c, a) || parseMetricOption(c, a) || parseLoopOption(c, a) || parseOutputOption(c, a))
+      continue;
+    if (!key.empty() && key[0] != '-') {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
     } else {
@@ -208,8 +273,8 @@ Args parseArgs(const std::vector<std::string>& args) {
                         << key
                         << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
                            "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --dual-share --dual-goal "
-                           "--max-aniso --seed "
+                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
+                           "--dual-share --dual-goal --max-aniso --seed "
                            "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
                            "--repeat-min-change "
                            "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
@@ -219,9 +284,9 @@ Args parseArgs(const std::vector<std::string>& args) {
                 "adapt: give either --problem NAME or CONFIG.json (see ablmg adapt --help)");
   ABLMG_REQUIRE(a.config.empty() || a.params.empty(),
                 "adapt: --param is for --problem NAME; a config gives \"params\"");
-  ABLMG_REQUIRE(haveTargets || a.finalVertices > 0 || a.printOptions,
+  ABLMG_REQUIRE(c.haveTargets || a.finalVertices > 0 || a.printOptions,
                 "adapt: --vertices N (the default schedule) or --target-vertices N1,N2,... is required");
-  ABLMG_REQUIRE(!(haveTargets && a.finalVertices > 0), "adapt: give --vertices N or --target-vertices, not both");
+  ABLMG_REQUIRE(!(c.haveTargets && a.finalVertices > 0), "adapt: give --vertices N or --target-vertices, not both");
   if (a.finalVertices > 0) a.options.targetVertices = adapt::geometricSchedule(a.finalVertices, a.schedule);
   adapt::validate(a.options);
   return a;
@@ -321,6 +386,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
                                                                     : nlohmann::json(a.options.metric.hmaxUniform)},
           {"l2_share", a.options.l2Share},
           {"dual_weight", a.options.dualWeight},
+          {"h1_weight", a.options.h1Weight},
           {"dual_share", a.options.dualShare},
           {"dual_goal", a.options.dualGoal},
           {"warm_start", a.options.warmStart},
@@ -341,7 +407,7 @@ const char* kAdaptHelp =
                    (--vertices N [--start-vertices N0] [--growth G] [--passes P] [--passes-up-to N1]
                     | [--cycles K] --target-vertices N1,N2,...)
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
-                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--dual-share F]
+                   [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
                    [--dual-goal on|off]
                    [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
                    [--lattice short|axes|long]
@@ -506,14 +572,22 @@ struct InterfaceCheck {
 /// Rates, the error check, and (with materials) the interface check, on stdout.
 InterfaceCheck printSummary(const adapt::AdaptReport& report, const Problem& problem, const Mesh2& finalMesh) {
   const bool exact = problem.data.exact.has_value();
+  // A fit over cycles of one size has no slope (NaN): "n/a", as null in convergence.json.
+  const auto rate = [](double r) {
+    if (!std::isfinite(r)) return std::string("n/a");
+    char s[32];
+    std::snprintf(s, sizeof s, "%.3f", r);
+    return std::string(s);
+  };
   if (exact) {
-    std::printf(
-        "Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %.3f  H1 %.3f  L2interp %.3f\n",
-        report.rateWindow, report.l2Rate, report.h1Rate, report.l2InterpRate);
+    std::printf("Rates (log-log fit over the last %d cycles, optimal P1: L2 -1, H1 -0.5): L2 %s  H1 %s  L2interp %s\n",
+                report.rateWindow, rate(report.l2Rate).c_str(), rate(report.h1Rate).c_str(),
+                rate(report.l2InterpRate).c_str());
     std::printf("Errors decrease from the first to the last cycle: %s\n", report.errorsDecrease ? "yes" : "NO");
   }
-  std::printf("Estimated interpolation error (recovered Hessian, est=): rate %.3f over the last %d cycles%s\n",
-              report.l2InterpEstimateRate, report.rateWindow, exact ? "; compare L2interp" : " (optimal P1: -1)");
+  std::printf("Estimated interpolation error (recovered Hessian, est=): rate %s over the last %d cycles%s\n",
+              rate(report.l2InterpEstimateRate).c_str(), report.rateWindow,
+              exact ? "; compare L2interp" : " (optimal P1: -1)");
   if (report.stoppedEarly) std::printf("Stopped after cycle %d: error target reached\n", report.cycles.back().cycle);
   InterfaceCheck check;
   const Mesh2& regions = problem.data.regions;
@@ -617,7 +691,13 @@ void compareWithUniform(const Problem& problem, const adapt::AdaptReport& report
   for (const auto& r : report.cycles) {
     if (!ul.x.empty() && std::abs(r.targetVertices - report.cycles[std::size_t(r.cycle) - 1].targetVertices) < 0.5)
       continue;
-    const auto u = uniformRun(problem.data, r.targetVertices);
+    UniformPoint u{};
+    try {
+      u = uniformRun(problem.data, r.targetVertices);
+    } catch (const InputError& e) {  // corners off every grid tried (a hole's corner at x = 0.3 of [0, 2])
+      std::printf("Uniform: skipped from N=%.0f on (%s)\n", r.targetVertices, e.what());
+      break;
+    }
     ul.x.push_back(u.vertices);
     ul.y.push_back(u.l2);
     uh.x.push_back(u.vertices);
@@ -625,6 +705,7 @@ void compareWithUniform(const Problem& problem, const adapt::AdaptReport& report
     j["uniform"].push_back({{"vertices", u.vertices}, {"l2_error", u.l2}, {"h1_error", u.h1}});
     std::printf("Uniform: N=%.0f L2=%.3e H1=%.3e\n", u.vertices, u.l2, u.h1);
   }
+  if (ul.x.empty()) return;
   curves.push_back(ul);
   curves.push_back(uh);
   std::vector<double> an, al2, ah1;  // log–log interpolation along the cycles

@@ -49,6 +49,11 @@ Metric2 Metric2::fromTensor(double m11, double m12, double m22, const std::strin
   const Metric2 m = raw(m11, m12, m22);
   ABLMG_REQUIRE(std::isfinite(m11) && std::isfinite(m12) && std::isfinite(m22),
                 what << ": non-finite tensor (" << m11 << ", " << m12 << ", " << m22 << ")");
+  // An SPD tensor whose eigenvalue ratio passes ~1e16 (sizes 1e8 apart) has its smaller
+  // eigenvalue lost to round-off: said so, not "not positive definite".
+  ABLMG_REQUIRE(m.isSpd() || !(m11 > 0 && m22 > 0 && m11 * m22 - m12 * m12 > 0),
+                what << ": tensor (" << m11 << ", " << m12 << ", " << m22
+                     << ") is too anisotropic: its smaller eigenvalue is lost to round-off");
   ABLMG_REQUIRE(m.isSpd(), what << ": tensor (" << m11 << ", " << m12 << ", " << m22 << ") is not positive definite");
   return m;
 }

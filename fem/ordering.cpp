@@ -11,12 +11,62 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include <amd.h>
 #include <metis.h>
+#include <omp.h>
 
 namespace ablmg::fem {
 namespace {
+
+/// Runs body(r, begin, end) for each of the `parts` ranges of [0, n) (range r is
+/// [n r / parts, n (r + 1) / parts)), on all threads of a new team when `wide`, else on the
+/// calling thread (then parts must be 1). The ranges do not depend on the team, so results kept
+/// per range and merged in range order are the same for any thread count. body must not throw.
+template <class F>
+void forRanges(std::size_t n, int parts, bool wide, F&& body) {
+  if (!wide) {
+    body(0, std::size_t(0), n);
+    return;
+  }
+#pragma omp parallel
+  for (int r = omp_get_thread_num(); r < parts; r += omp_get_num_threads())
+    body(r, n * std::size_t(r) / std::size_t(parts), n * std::size_t(r + 1) / std::size_t(parts));
+}
+
+/// Appends each set[k] whose class c = classOf(k) is ≥ 0 to *out[c] (c < K), in set's order.
+/// With `wide`, the `parts` ranges of set are classified on all threads, then written at
+/// offsets counted in between: the same outputs as the serial pass, for any thread count.
+template <int K, class F>
+void partitionInOrder(const std::vector<int>& set, int parts, bool wide, F&& classOf,
+                      const std::array<std::vector<int>*, K>& out) {
+  if (!wide) {
+    for (std::size_t k = 0; k < set.size(); ++k)
+      if (const int c = classOf(k); c >= 0) out[std::size_t(c)]->push_back(set[k]);
+    return;
+  }
+  std::vector<signed char> cls(set.size());
+  std::vector<std::array<std::size_t, K>> at(static_cast<std::size_t>(parts));  // per range: counts, then offsets
+  forRanges(set.size(), parts, true, [&](int r, std::size_t b, std::size_t e) {
+    std::array<std::size_t, K> count{};
+    for (std::size_t k = b; k < e; ++k) {
+      cls[k] = static_cast<signed char>(classOf(k));
+      if (cls[k] >= 0) ++count[std::size_t(cls[k])];
+    }
+    at[std::size_t(r)] = count;
+  });
+  for (std::size_t c = 0; c < std::size_t(K); ++c) {
+    std::size_t next = out[c]->size();
+    for (auto& a : at) next += std::exchange(a[c], next);
+    out[c]->resize(next);
+  }
+  forRanges(set.size(), parts, true, [&](int r, std::size_t b, std::size_t e) {
+    std::array<std::size_t, K> pos = at[std::size_t(r)];
+    for (std::size_t k = b; k < e; ++k)
+      if (const int c = cls[k]; c >= 0) (*out[std::size_t(c)])[pos[std::size_t(c)]++] = set[k];
+  });
+}
 
 /// The recursion writes each piece's order into perm[offset, offset + size): the halves of a
 /// cut are independent, so they run as OpenMP tasks, and the output does not depend on the
@@ -101,10 +151,38 @@ struct Dissection {
   /// d): the middle {c = m} plus the smaller of (lower vertices touching upper) and (upper
   /// vertices touching lower), counted on the piece's own edges (stamp s marks the piece).
   /// One pass over the piece for all cuts (each vertex's point and reaches read once).
-  void separatorSizes(const std::vector<int>& set, const double (&m)[4][kQuantiles], int s,
+  /// With `wide`, the `parts` ranges of the piece are counted on all threads (integer sums:
+  /// the same sizes).
+  void separatorSizes(const std::vector<int>& set, const double (&m)[4][kQuantiles], int s, int parts, bool wide,
                       long (&size)[4][kQuantiles]) const {
+    struct Counts {
+      long middle[4][kQuantiles], lowerTouching[4][kQuantiles], upperTouching[4][kQuantiles];
+    };
+    std::vector<Counts> part(std::size_t(parts), Counts{});
+    forRanges(set.size(), parts, wide, [&](int range, std::size_t b, std::size_t e) {
+      countNearCuts(set.data() + b, set.data() + e, m, s, part[std::size_t(range)]);
+    });
+    for (std::size_t r = 1; r < part.size(); ++r)
+      for (int d = 0; d < 4; ++d)
+        for (int i = 0; i < kQuantiles; ++i) {
+          part[0].middle[d][i] += part[r].middle[d][i];
+          part[0].lowerTouching[d][i] += part[r].lowerTouching[d][i];
+          part[0].upperTouching[d][i] += part[r].upperTouching[d][i];
+        }
+    const Counts& c = part[0];
+    for (int d = 0; d < 4; ++d)
+      for (int i = 0; i < kQuantiles; ++i)
+        size[d][i] = c.middle[d][i] + std::min(c.lowerTouching[d][i], c.upperTouching[d][i]);
+  }
+
+  /// separatorSizes' counts over the vertices [first, last).
+  template <class Counts>
+  void countNearCuts(const int* first, const int* last, const double (&m)[4][kQuantiles], int s, Counts& counts) const {
+    // Local counters (not through `counts`, which the atomic mark loads would make the
+    // compiler reload and store around each test), added to `counts` at the end.
     long middle[4][kQuantiles] = {}, lowerTouching[4][kQuantiles] = {}, upperTouching[4][kQuantiles] = {};
-    for (int v : set) {
+    for (const int* pv = first; pv != last; ++pv) {
+      const int v = *pv;
       const std::array<double, 4> c4 = projections(points[v]);
       const float* r = &reach[4 * std::size_t(v)];
       // Most vertices are farther than their reach from all twelve lines: one branch-free test
@@ -134,8 +212,38 @@ struct Dissection {
       }
     }
     for (int d = 0; d < 4; ++d)
-      for (int i = 0; i < kQuantiles; ++i)
-        size[d][i] = middle[d][i] + std::min(lowerTouching[d][i], upperTouching[d][i]);
+      for (int i = 0; i < kQuantiles; ++i) {
+        counts.middle[d][i] += middle[d][i];
+        counts.lowerTouching[d][i] += lowerTouching[d][i];
+        counts.upperTouching[d][i] += upperTouching[d][i];
+      }
+  }
+
+  /// The piece's extent along each direction d: [lo[d], hi[d]] of along(·, d); with `wide`,
+  /// over the `parts` ranges on all threads (minima and maxima: the same values).
+  struct Extent {
+    std::array<double, 4> lo, hi;
+  };
+  Extent extentOf(const std::vector<int>& set, int parts, bool wide) const {
+    const std::array<double, 4> first = projections(points[set[0]]);
+    std::vector<Extent> part(std::size_t(parts), Extent{first, first});
+    forRanges(set.size(), parts, wide, [&](int r, std::size_t b, std::size_t e) {
+      std::array<double, 4> lo = first, hi = first;  // in registers, not through the vector
+      for (std::size_t k = b; k < e; ++k) {
+        const std::array<double, 4> c = projections(points[set[k]]);
+        for (int d = 0; d < 4; ++d) {
+          lo[d] = std::min(lo[d], c[d]);
+          hi[d] = std::max(hi[d], c[d]);
+        }
+      }
+      part[std::size_t(r)] = {lo, hi};
+    });
+    for (const Extent& x : part)
+      for (int d = 0; d < 4; ++d) {
+        part[0].lo[d] = std::min(part[0].lo[d], x.lo[d]);
+        part[0].hi[d] = std::max(part[0].hi[d], x.hi[d]);
+      }
+    return part[0];
   }
 
   /// The coordinates along d at the quantiles kQuantile of an evenly strided sample of
@@ -181,21 +289,16 @@ struct Dissection {
   /// nothing more. Exact ties: the lowest direction, then the median.
   static constexpr double kNearTie = 0.02;
   static constexpr double kOffCentreWeight = 1.1;
-  Cut bestCut(const std::vector<int>& set, bool root) {
+  Cut bestCut(const std::vector<int>& set, const Extent& ext, bool root, int parts, bool wide) {
     const int s = newStamp();
-    for (int v : set) setMark(v, s);
-    std::array<double, 4> lo = projections(points[set[0]]), hi = lo;
-    for (int v : set) {
-      const std::array<double, 4> c = projections(points[v]);
-      for (int d = 0; d < 4; ++d) {
-        lo[d] = std::min(lo[d], c[d]);
-        hi[d] = std::max(hi[d], c[d]);
-      }
-    }
+    forRanges(set.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) setMark(set[k], s);
+    });
+    const std::array<double, 4>&lo = ext.lo, &hi = ext.hi;
     double m[4][kQuantiles];
     long size[4][kQuantiles];
     for (int d = 0; d < 4; ++d) quantilesAlong(set, d, m[d]);
-    separatorSizes(set, m, s, size);
+    separatorSizes(set, m, s, parts, wide, size);
     // Cut k = (direction k / kQuantiles, quantile k % kQuantiles).
     constexpr int K = 4 * kQuantiles;
     const auto score = [&](int k) {
@@ -218,67 +321,73 @@ struct Dissection {
     return {chosen / kQuantiles, m[chosen / kQuantiles][chosen % kQuantiles]};
   }
 
-  void order(std::vector<int> set, std::size_t offset) {
-    if (int(set.size()) <= leafSize) {
+  /// Cuts `set` (more than leafSize vertices) into lower, upper and a separator, which goes
+  /// into perm at its place; false (and the set ordered as a leaf) when there is nothing to cut.
+  /// With `wide` (the first cut, before the recursion's tasks exist) its passes over the
+  /// piece run on all threads, in `parts` fixed ranges: the same cut for any thread count.
+  bool cutPiece(std::vector<int>& set, std::size_t offset, bool root, int parts, bool wide, std::vector<int>& lower,
+                std::vector<int>& upper) {
+    const Extent ext = extentOf(set, parts, wide);
+    if (ext.lo[0] == ext.hi[0] && ext.lo[1] == ext.hi[1]) {  // all points coincide: nothing to cut
       orderLeaf(set, offset);
-      return;
-    }
-    Vec2 lo = points[set[0]], hi = lo;
-    for (int v : set) {
-      lo = lo.cwiseMin(points[v]);
-      hi = hi.cwiseMax(points[v]);
-    }
-    if (hi == lo) {  // all points coincide: nothing to cut
-      orderLeaf(set, offset);
-      return;
+      return false;
     }
     // Median coordinate m: lower = {c < m}, middle = {c == m}, upper = {c > m}. On structured
     // grids the middle is a whole grid line, which alone separates lower from upper.
-    Cut cut{(hi.x() - lo.x()) >= (hi.y() - lo.y()) ? 0 : 1, 0};
+    Cut cut{(ext.hi[0] - ext.lo[0]) >= (ext.hi[1] - ext.lo[1]) ? 0 : 1, 0};
     if (kDirections > 1)
-      cut = bestCut(set, offset == 0 && set.size() == perm.size());
+      cut = bestCut(set, ext, root, parts, wide);
     else
       cut.median = medianAlong(set, cut.direction);
     const int d = cut.direction;
     const double m = cut.median;
-    std::vector<int> lower, middle, upper;
-    for (int v : set) {
-      const double c = along(points[v], d);
-      (c < m ? lower : c > m ? upper : middle).push_back(v);
-    }
+    std::vector<int> middle;
+    partitionInOrder<3>(set, parts, wide,
+                        [&](std::size_t k) {
+                          const double c = along(points[set[k]], d);
+                          return c < m ? 0 : c > m ? 2 : 1;
+                        },
+                        {&lower, &middle, &upper});
     if (lower.empty() && upper.empty()) {  // every point on the median line: nothing to cut
       orderLeaf(middle, offset);
-      return;
+      return false;
     }
     std::vector<int>().swap(set);  // free before recursing
     // Edges lower–upper are covered by the smaller of: upper vertices touching lower, lower
     // vertices touching upper. The separator is that set plus the middle. One scan of the
     // lower side's adjacency finds both; a lower vertex farther below m than its reach has no
-    // neighbour above m and is skipped (the same sets: only the scan is shorter).
+    // neighbour above m and is skipped (the same sets: only the scan is shorter). On several
+    // threads a vertex is marked st by whichever finds it first: the same marks and flags.
     const int su = newStamp();
-    for (int v : upper) setMark(v, su);
+    forRanges(upper.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) setMark(upper[k], su);
+    });
     const int st = newStamp();  // upper vertices found touching lower
     std::vector<char> tl(lower.size(), 0);
-    for (std::size_t k = 0; k < lower.size(); ++k) {
-      if (!reach.empty() && m - along(points[lower[k]], d) > double(reach[4 * std::size_t(lower[k]) + std::size_t(d)]))
-        continue;
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, lower[k]); it; ++it) {
-        const int w = int(it.index());
-        const int mw = markOf(w);
-        if (mw == su || mw == st) {
-          tl[k] = 1;
-          setMark(w, st);
+    forRanges(lower.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) {
+        const int v = lower[k];
+        if (!reach.empty() && m - along(points[v], d) > double(reach[4 * std::size_t(v) + std::size_t(d)])) continue;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, v); it; ++it) {
+          const int w = int(it.index());
+          const int mw = markOf(w);
+          if (mw == su || mw == st) {
+            tl[k] = 1;
+            setMark(w, st);
+          }
         }
       }
-    }
+    });
     std::vector<char> tu(upper.size(), 0);
-    for (std::size_t k = 0; k < upper.size(); ++k) tu[k] = markOf(upper[k]) == st;
+    forRanges(upper.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
+      for (std::size_t k = b; k < e; ++k) tu[k] = markOf(upper[k]) == st;
+    });
     const long cu = std::count(tu.begin(), tu.end(), 1), cl = std::count(tl.begin(), tl.end(), 1);
     std::vector<int> separator = std::move(middle);
     auto split = [&](std::vector<int>& side, const std::vector<char>& t) {
       std::vector<int> keep;
       keep.reserve(side.size());
-      for (std::size_t k = 0; k < side.size(); ++k) (t[k] ? separator : keep).push_back(side[k]);
+      partitionInOrder<2>(side, parts, wide, [&](std::size_t k) { return t[k] ? 1 : 0; }, {&keep, &separator});
       side.swap(keep);
     };
     if (cu <= cl)
@@ -286,19 +395,44 @@ struct Dissection {
     else
       split(lower, tl);
     // Layout: lower, upper, separator.
-    const std::size_t upperOffset = offset + lower.size(), sepOffset = upperOffset + upper.size();
+    const std::size_t sepOffset = offset + lower.size() + upper.size();
     std::sort(separator.begin(), separator.end());
     emit(separator, sepOffset);
-    if (offset == 0 && sepOffset + separator.size() == perm.size()) top = {int(lower.size()), int(upper.size())};
-    if (lower.size() + upper.size() >= kTaskCutoff) {
-#pragma omp task default(none) firstprivate(lower, offset)
-      failure.run(long(offset), [&] { order(std::move(lower), offset); });
-      order(std::move(upper), upperOffset);
-#pragma omp taskwait
-    } else {
+    if (root) top = {int(lower.size()), int(upper.size())};
+    return true;
+  }
+
+  /// Orders `set` into perm[offset, offset + |set|). The first call (the whole set, outside
+  /// any parallel region) cuts on all threads, then opens the team whose tasks order the sides.
+  void order(std::vector<int> set, std::size_t offset) {
+    if (int(set.size()) <= leafSize) {
+      orderLeaf(set, offset);
+      return;
+    }
+    const bool root = offset == 0 && set.size() == perm.size();
+    const bool wide = root && set.size() >= kTaskCutoff && !omp_in_parallel() && omp_get_max_threads() > 1;
+    const int parts = wide ? omp_get_max_threads() : 1;
+    std::vector<int> lower, upper;
+    if (!cutPiece(set, offset, root, parts, wide, lower, upper)) return;
+    const std::size_t upperOffset = offset + lower.size();
+    if (lower.size() + upper.size() < kTaskCutoff) {
       order(std::move(lower), offset);
       order(std::move(upper), upperOffset);
+    } else if (root) {
+#pragma omp parallel
+#pragma omp single
+      orderSides(lower, upper, offset, upperOffset);
+    } else {
+      orderSides(lower, upper, offset, upperOffset);
     }
+  }
+
+  /// The two sides of a cut, the lower one as a task.
+  void orderSides(std::vector<int>& lower, std::vector<int>& upper, std::size_t offset, std::size_t upperOffset) {
+#pragma omp task default(none) firstprivate(lower, offset)
+    failure.run(long(offset), [&] { order(std::move(lower), offset); });
+    failure.run(long(upperOffset), [&] { order(std::move(upper), upperOffset); });
+#pragma omp taskwait
   }
 };
 
@@ -339,9 +473,7 @@ std::vector<int> geometricNestedDissection(const Eigen::SparseMatrix<double>& A,
   }
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
-#pragma omp parallel if (n >= int(Dissection::kTaskCutoff))
-#pragma omp single
-  d.failure.run(-1, [&] { d.order(std::move(all), 0); });
+  d.failure.run(-1, [&] { d.order(std::move(all), 0); });  // opens its own team (Dissection::order)
   d.failure.rethrow();
   if (top) *top = d.top;
   return d.perm;

@@ -47,9 +47,13 @@ void skipSection(TextScanner& s) {
 void readHeader(TextScanner& s, int& dim, bool dimRequired) {
   ABLMG_REQUIRE(!s.atEnd(), s.name() << ":1: empty file, expected MeshVersionFormatted");
   const auto kw = lower(s.next("MeshVersionFormatted"));
+  // Files other tools write that users pass by mistake: say what they are and how to convert.
+  const char* hint = kw.starts_with("$meshformat") ? "a gmsh .msh file: write medit with gmsh -format mesh"
+                     : kw.starts_with("<")         ? "an XML file (VTK?): convert with meshio convert IN OUT.mesh"
+                                                   : "not a medit ASCII file?";
   ABLMG_REQUIRE(kw == "meshversionformatted", s.where() << "expected MeshVersionFormatted, got '"
-                                                        << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30))
-                                                        << "' (not a medit ASCII file?)");
+                                                        << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30)) << "' ("
+                                                        << hint << ")");
   s.nextInt("format version", 0, 3);
   dim = 2;
   if (!s.atEnd() && lower(s.peek()) == "dimension") {
@@ -87,10 +91,13 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
   readHeader(s, dim, true);
   Mesh2 mesh;
   std::vector<int> vertexLine;  // line of each vertex (for z ≠ 0 messages)
-  bool haveVertices = false;
+  bool haveVertices = false, haveEnd = false;
   while (!s.atEnd()) {
     const auto kw = lower(s.next("section keyword"));
-    if (kw == "end") break;
+    if (kw == "end") {
+      haveEnd = true;
+      break;
+    }
     if (kw == "vertices") {
       ABLMG_REQUIRE(!haveVertices, s.where() << "second Vertices section");
       haveVertices = true;
@@ -161,6 +168,9 @@ Mesh2 parseSections(std::string text, const std::string& name, std::vector<doubl
     }
   }
   ABLMG_REQUIRE(haveVertices, name << ": no Vertices section");
+  // Every writer ends with End (medit, gmsh, FreeFem++, MMG, meshio): without it the file was
+  // cut between two sections, and what was read would be meshed as if it were whole.
+  ABLMG_REQUIRE(haveEnd, name << ":" << s.line() << ": no End keyword (truncated file?)");
   return mesh;
 }
 

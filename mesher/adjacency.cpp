@@ -310,6 +310,12 @@ void replaceRows(AdjacencyLists& lists, std::span<const int> rows, RowFn&& row) 
 /// after another): a stable counting sort by row, O(pairs + n); the same order as std::sort
 /// since the pairs are distinct (3·10³ pairs per step of the ring remesh).
 void sortByRow(std::vector<std::pair<int, int>>& pairs, int n) {
+  // Few pairs against many rows: a stable comparison sort by row gives the same order without
+  // the O(n) count array.
+  if (pairs.size() < std::size_t(n) / 64) {
+    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return;
+  }
   std::vector<int> start(std::size_t(n) + 1, 0);
   for (const auto& p : pairs) ++start[std::size_t(p.first) + 1];
   for (int i = 0; i < n; ++i) start[std::size_t(i) + 1] += start[std::size_t(i)];
@@ -359,9 +365,10 @@ void refreshAdjacencyAround(AdjacencyLists& lists, std::span<const Vec2> x, std:
   // here and mirrored into the partner's row below.
   std::vector<char> mark(static_cast<std::size_t>(n), 0);
   for (int c : centres) mark[std::size_t(c)] = 1;
-  std::vector<int> dirty;
-  for (int i = 0; i < n; ++i)
-    if (mark[std::size_t(i)]) dirty.push_back(i);
+  // The centres come ascending (a few thousand of 10⁵ rows): no scan of the marks for them.
+  std::vector<int> dirty(centres.begin(), centres.end());
+  if (!std::is_sorted(dirty.begin(), dirty.end())) std::sort(dirty.begin(), dirty.end());
+  dirty.erase(std::unique(dirty.begin(), dirty.end()), dirty.end());
   if (dirty.empty()) return;
   const NewRows r = twoRingRows(lists, dirty, x, m, radius);
   // Rows outside the recomputed set keep the relation symmetric: a partner gained (lost) by a

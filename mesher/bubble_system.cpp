@@ -220,7 +220,7 @@ void BubbleSystem::updateMetrics(const MetricField& field, bool all, double lazy
   return true;
 }
 
-bool BubbleSystem::feels(int i, int j) const {
+[[gnu::always_inline]] inline bool BubbleSystem::feels(int i, int j) const {
   return nodes_.kinds[i] != NodeKind::Segment || sameChain(i, j);  // Segment: 1D packing along the loop piece
 }
 

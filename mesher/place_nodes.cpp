@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -236,8 +237,15 @@ BubbleSystem NodePlacer::initialBubbles(const Domain& domain) {
   ScopedTimer timer{st_.secondsInitial};
   const int holes = int(domain.loops().size()) - 1;
   const double coarse = 2.0 / std::sqrt(3.0) * metricArea(domain, geo_, metric_, 64);
-  ABLMG_REQUIRE(coarse <= double(o_.maxNodes), "placeNodes: the metric asks for about "
-                                                   << long(coarse) << " nodes, more than maxNodes = " << o_.maxNodes);
+  if (!(coarse <= double(o_.maxNodes))) {  // as an integer only where one holds it (h = 1e-12: ~1e24)
+    char count[32];
+    if (coarse < 1e18)
+      std::snprintf(count, sizeof count, "%lld", std::llround(coarse));
+    else
+      std::snprintf(count, sizeof count, "%.3g", coarse);
+    ABLMG_REQUIRE(false,
+                  "placeNodes: the metric asks for about " << count << " nodes, more than maxNodes = " << o_.maxNodes);
+  }
   const double areaM = metricArea(domain, geo_, metric_, 256);
   NodeSet nodes;
   std::vector<double> arc;

@@ -81,7 +81,13 @@ struct PassRules {
     if (steerUp) delBudget = 0;  // never delete while short, except real overlaps
     insBudget = steerUp ? deficit : std::numeric_limits<long>::max();
     if (steerDown) insBudget = 0;
+    // eq. (9) finds holes everywhere in a metric no packing fits (a long size turning faster
+    // than it spans: h1 = 0.5 along θ = 3y): its insertions grew such counts 4-9x past N*,
+    // and the adjacency with them (minutes for 10⁴ nodes). Past kMaxOvershoot × the aim, none.
+    capped = o.target >= 0 && double(n) > kMaxOvershoot * aim;
   }
+  static constexpr double kMaxOvershoot = 1.5;
+  bool capped = false;  ///< no insertion at all this pass
 };
 
 /// One pass's working state: the per-node measures, the locks and the chosen edits.
@@ -221,7 +227,7 @@ long Pass::chooseInsertions(const DomainGeometry& geo) {
   const auto& nodes = sys.nodes();
   const auto& ms = sys.metrics();
   std::vector<int> ins;
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n && !rules.capped; ++i)
     if (nodes.kinds[i] == NodeKind::Interior && alpha[i] < rules.insBelow) ins.push_back(i);
   std::stable_sort(ins.begin(), ins.end(), [&](int a, int b) { return alpha[a] < alpha[b]; });
   const auto [blo, bhi] = geo.boundingBox();

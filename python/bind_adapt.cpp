@@ -33,8 +33,8 @@ size gradation (adapt/gradation.hpp) and a rescale back to that complexity.
                      'h1': W^{1,inf} would crowd the vertices into a corner singularity)
   (every default is AdaptOptions' in adapt/adaptive_loop.hpp, i.e. `ablmg adapt`'s: the call
   with no options gives the metric of its loop; ablmg.ADAPT_DEFAULTS lists them)
-  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.05 with
-                     norm 'l2', the H1 shape with 'h1'); 0: the Lp shape
+  shape_blend        w in [0, 1]: the shape (|H|/sqrt(det|H|))^(1+w); None: the loop's (0.05, for
+                     either norm); 0: the Lp shape; 1: the H1 shape
   hmin, hmax         size bounds; hmax = inf means a quarter of the bounding-box diagonal
   max_anisotropy     largest h1/h2 (>= 1)
   hgrad              <= 0: no gradation; > 1: gradation factor
@@ -88,8 +88,8 @@ void bindAdapt(py::module_& m) {
           o.metric.p = *p;
         else if (o.metric.norm == adapt::ErrorNorm::H1)
           o.metric.p = 2;
-        // None: the loop's (AdaptOptions: its blend for the L2 norm, the norm's own shape for H1)
-        if (shapeBlend || o.metric.norm == adapt::ErrorNorm::H1) o.metric.shapeBlend = shapeBlend;
+        // None: the loop's (AdaptOptions: its blend, for either norm, as `ablmg adapt`)
+        if (shapeBlend) o.metric.shapeBlend = shapeBlend;
         o.metric.hmin = hmin;
         o.metric.hmax = hmax;
         o.metric.maxAnisotropy = maxAnisotropy;

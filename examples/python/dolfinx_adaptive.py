@@ -19,11 +19,12 @@ The loop is that of `ablmg adapt --problem NAME --target-vertices N0,N1,...`
   5. u_h is gathered to rank 0 in ablmg's vertex order (mesh.geometry.input_global_indices:
      DOLFINx renumbers vertices and dofs) and ablmg.hessian_metric computes the metric of the
      next target with the defaults of `ablmg adapt` (ablmg.ADAPT_DEFAULTS; without its
-     dual-weighted density and dual share, which need a second solve, and its saddle shape, which
+     dual-weighted and H1-weighted density and dual share, which need a second solve or the
+     indicators of u_h, and its saddle shape, which
      needs lattice rows remesh does not take); ablmg.remesh(..., domain=D, options=MeshOptions('adapt')) meshes the exact
      domain as the loop does; back to 2.
 
---compare also runs `ablmg adapt --dual-weight 0 --dual-share 0 --saddle-shape 0` with the same schedule and solves
+--compare also runs `ablmg adapt --dual-weight 0 --h1-weight 0 --dual-share 0 --saddle-shape 0` with the same schedule and solves
 with DOLFINx on each of its meshes (written with --medit on; ablmg adapt's dual-weighted density and dual
 share need a second solve per cycle, which this loop does not do, so they are off there): the first comparison is the two loops (the same mesher,
 a different solver, hence slightly different metrics and meshes), the second the two solvers on
@@ -273,8 +274,8 @@ def compare(problem, targets, rows, out_dir, ablmg_bin):
     adapt_dir = out_dir / f"{problem.name}_ablmg_adapt"
     if ROOT:
         subprocess.run([str(ablmg_bin), "adapt", "--problem", problem.name, "--target-vertices",
-                        ",".join(str(int(t)) for t in targets), "--dual-weight", "0", "--dual-share", "0",
-                        "--saddle-shape", "0", "--uniform", "off", "--vtu", "off",
+                        ",".join(str(int(t)) for t in targets), "--dual-weight", "0", "--h1-weight", "0",
+                        "--dual-share", "0", "--saddle-shape", "0", "--uniform", "off", "--vtu", "off",
                         "--medit", "on", "--out-dir", str(adapt_dir)], check=True, stdout=subprocess.DEVNULL)
         ours = read_csv(adapt_dir / "convergence.csv")
         COMM.Ibarrier().Wait()

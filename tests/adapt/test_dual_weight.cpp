@@ -59,3 +59,26 @@ TEST(DualWeight, IndicatorsVanishForLinearFieldsAndFollowAFront) {
   EXPECT_THROW(dualWeightScale(mesh, std::vector<double>(3, 1.0), 0.25), InputError);
   EXPECT_THROW(dualWeightScale(mesh, dualWeightedIndicators(mesh, front, quad), 0), InputError);
 }
+
+// The H1 weighting: ε_T is ‖G u − ∇u‖_T itself (the dual's factor with z's part left out), so the
+// combined factor with γ = 0 is dualWeightScale of ε, and with both exponents it is the product
+// ε^(γ+γ₁) ε_z^γ before the clamp.
+TEST(DualWeight, H1WeightingMultipliesTheFactors) {
+  const Mesh2 mesh = fem::unitSquareMesh(30, 0.1, 5);
+  const auto quad = values(mesh, [](const Vec2& p) { return p.x() * (1 - p.x()) * p.y() * (1 - p.y()); });
+  const auto front = values(mesh, [](const Vec2& p) { return std::atan(20 * (p.x() - 0.5)); });
+  const auto linear = values(mesh, [](const Vec2& p) { return 2 * p.x() - p.y(); });
+  for (double e : recoveryErrorIndicators(mesh, linear)) EXPECT_NEAR(e, 0, 1e-12);
+  const auto eu = recoveryErrorIndicators(mesh, front);
+  const auto ez = recoveryErrorIndicators(mesh, quad);
+  const auto eta = dualWeightedIndicators(mesh, front, quad);
+  for (std::size_t t = 0; t < eta.size(); ++t) EXPECT_NEAR(eta[t], eu[t] * ez[t], 1e-12 * (1 + eta[t]));
+  EXPECT_EQ(densityWeightScale(mesh, front, {}, 0, 0.25), dualWeightScale(mesh, eu, 0.25));
+  EXPECT_EQ(densityWeightScale(mesh, front, quad, 0.25, 0), dualWeightScale(mesh, eta, 0.25));
+  std::vector<double> both(eta.size());
+  for (std::size_t t = 0; t < eta.size(); ++t) both[t] = std::pow(eu[t], 0.375) * std::pow(ez[t], 0.125);
+  const auto s = densityWeightScale(mesh, front, quad, 0.125, 0.25), expect = dualWeightScale(mesh, both, 1.0);
+  for (std::size_t v = 0; v < s.size(); ++v) EXPECT_NEAR(s[v], expect[v], 1e-9);
+  EXPECT_THROW(densityWeightScale(mesh, front, quad, 0, 0), InputError);
+  EXPECT_THROW(densityWeightScale(mesh, front, quad, -0.1, 0.25), InputError);
+}

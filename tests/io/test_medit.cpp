@@ -271,10 +271,24 @@ TEST(Medit, FastNumberPathKeepsTheMessages) {
   expectInputError([&] { io::parseMesh(head + "0 0 99999999999\nEnd\n", "ref.mesh"); },
                    {"ref.mesh:5:", "vertex reference 99999999999 is out of range"});
   expectInputError([&] { io::parseMesh(head + "0 0\n\n", "eof.mesh"); }, {"eof.mesh:5:", "unexpected end of file"});
-  // A comment right after a number ends it; the last number may end the file.
-  const Mesh2 m = io::parseMesh(head + "0.5#c\n-0.25 3", "ok.mesh");
+  // A comment right after a number ends it; the last number may end the file (a .sol: a
+  // .mesh needs its End keyword, MeshFile.FileCutBetweenSectionsIsTruncated).
+  const Mesh2 m = io::parseMesh(head + "0.5#c\n-0.25 3\nEnd", "ok.mesh");
   EXPECT_EQ(m.vertices[0], Vec2(0.5, -0.25));
   EXPECT_EQ(m.vertexRefs[0], 3);
+  const auto sol = io::parseSol("MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n1\n1 1\n0.25", "ok.sol");
+  ASSERT_EQ(sol.size(), 1u);
+  EXPECT_DOUBLE_EQ(sol[0].m11(), 16.0);
+}
+
+TEST(MeshFile, FileCutBetweenSectionsIsTruncated) {
+  // Cut after Edges: without the End check it read as a boundary-only file and was meshed.
+  const std::string whole =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 1\n1 0 1\n0 1 1\n"
+      "Edges\n3\n1 2 1\n2 3 1\n3 1 1\nTriangles\n1\n1 2 3 1\nEnd\n";
+  EXPECT_EQ(io::parseMesh(whole, "whole.mesh").numTriangles(), 1);
+  expectInputError([&] { io::parseMesh(whole.substr(0, whole.find("Triangles")), "cut.mesh"); },
+                   {"cut.mesh:", "no End keyword (truncated file?)"});
 }
 
 TEST(Medit, ADirectoryReadsAsAnEmptyFile) {

@@ -118,3 +118,25 @@ TEST(Population, SteeringFillsASmallHoleOnlyBelowTheTarget) {
   steer.steerUp = false;
   EXPECT_EQ(insertedNearHole(steer), 0);
 }
+
+// Past 1.5× the aim no hole is filled: in a metric no packing fits, eq. (9) finds holes
+// everywhere, and its insertions had grown the count 4–9× past the target.
+TEST(Population, NoInsertionFarAboveTheTarget) {
+  const Domain d = Domain::rectangle(-1, -1, 3, 3);
+  const DomainGeometry geo(d);
+  ConstantMetricField field(Metric2::isotropic(0.1));
+  std::vector<Vec2> x;
+  std::vector<Metric2> m;
+  hexPatch(0.1, 15, x, m);
+  x.erase(x.begin() + 7 * 15 + 7);  // a vacancy: filled without a target (FillsAVacancy...)
+  auto inserted = [&](long target) {
+    BubbleSystem sys = interiorSystem(geo, x, field);
+    PopulationOptions o;
+    o.target = target;
+    return adjustPopulation(sys, buildAdjacency(sys.nodes().positions, sys.metrics(), 1.7), geo, field, o).inserted;
+  };
+  const long n = long(x.size());
+  EXPECT_GE(inserted(n), 1);            // at the target: the vacancy is a real hole
+  EXPECT_GE(inserted(n * 10 / 14), 1);  // 1.4× above: still filled
+  EXPECT_EQ(inserted(n / 2), 0);        // 2× above: none
+}
