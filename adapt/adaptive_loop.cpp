@@ -124,7 +124,6 @@ std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& 
   d.hessians = std::move(both[1]);
   return std::move(both[0]);
 }
-}
 void requireMeshIndependent(const AdaptProblem& p) {
   const auto check = [](const fem::ScalarData& d, const std::string& what) {
     ABLMG_REQUIRE(!d.isVertexValues(), "adaptive loop: " << what
