@@ -179,6 +179,10 @@ void intersectHessians(std::vector<Hessian2>& accumulated, std::span<const Hessi
   }
 }
 
+/// At most this many time steps (a typo in dt or the final time would run for days, and
+/// overflows the step counter past 2·10⁹).
+constexpr double kMaxTimeSteps = 1e6;
+
 TransientReport runTransientLoop(const fem::TransientProblem& problem, const TransientOptions& options,
                                  const std::function<void(const TransientFrame&)>& onInterval) {
   validate(options, problem.tStart);
@@ -187,7 +191,11 @@ TransientReport runTransientLoop(const fem::TransientProblem& problem, const Tra
   report.dt = options.dt > 0 ? options.dt : problem.dt;
   report.tStart = problem.tStart;
   const double tEnd = std::isnan(options.tEnd) ? problem.tEnd : options.tEnd;
-  const int nSteps = std::max(1, int(std::ceil((tEnd - problem.tStart) / report.dt - 1e-9)));
+  const double steps = std::ceil((tEnd - problem.tStart) / report.dt - 1e-9);
+  ABLMG_REQUIRE(steps <= kMaxTimeSteps, "transient options: (tEnd - tStart) / dt = ("
+                                            << tEnd << " - " << problem.tStart << ") / " << report.dt << " = " << steps
+                                            << " steps, more than " << kMaxTimeSteps);
+  const int nSteps = std::max(1, int(steps));
   report.tEnd = problem.tStart + nSteps * report.dt;
   Mesh2 current = uniformMesh(problem.domain, options.vertices, options.adapt.mesh).mesh;
   requireValidMesh(current, problem.domain, "initial");

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 
 #include <omp.h>
@@ -135,6 +136,20 @@ const ScalarData& subdomainDatum(const Mesh2& mesh, const std::map<int, ScalarDa
   return it->second;
 }
 
+/// The InputError for a NaN or infinite load in triangle t (vertices p), naming the point.
+[[noreturn]] void throwNonFiniteLoad(const ScalarData& f, const TriangleRule& rule, int t, const Vec2 (&p)[3]) {
+  if (f.isFunction())
+    for (int q = 0; q < rule.size(); ++q) {
+      const auto& l = rule.points[q];
+      const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
+      const double v = f.fn(x.x(), x.y());
+      ABLMG_REQUIRE(std::isfinite(v),
+                    "assemble: f = " << v << " at (" << x.x() << ", " << x.y() << ") in triangle " << t);
+    }
+  ABLMG_REQUIRE(false, "assemble: the load of triangle " << t << " is not finite (f at its vertices, or f too large)");
+  std::abort();  // not reached
+}
+
 /// The local stiffness and load of triangle t.
 void computeElement(const Mesh2& mesh, const PoissonProblem& problem, const TriangleRule& rule, int t, ElementData& d) {
   const auto& tri = mesh.triangles[t];
@@ -171,6 +186,7 @@ void computeElement(const Mesh2& mesh, const PoissonProblem& problem, const Tria
   } else {
     for (double& v : d.load) v = f.constant * area / 3;
   }
+  if (!std::isfinite(d.load[0] + d.load[1] + d.load[2])) throwNonFiniteLoad(f, rule, t, p);
 }
 
 /// Numbers the free (non-Dirichlet) vertices as dofs; fills the Dirichlet values.

@@ -47,9 +47,13 @@ void skipSection(TextScanner& s) {
 void readHeader(TextScanner& s, int& dim, bool dimRequired) {
   ABLMG_REQUIRE(!s.atEnd(), s.name() << ":1: empty file, expected MeshVersionFormatted");
   const auto kw = lower(s.next("MeshVersionFormatted"));
+  // Files other tools write that users pass by mistake: say what they are and how to convert.
+  const char* hint = kw.starts_with("$meshformat") ? "a gmsh .msh file: write medit with gmsh -format mesh"
+                     : kw.starts_with("<")         ? "an XML file (VTK?): convert with meshio convert IN OUT.mesh"
+                                                   : "not a medit ASCII file?";
   ABLMG_REQUIRE(kw == "meshversionformatted", s.where() << "expected MeshVersionFormatted, got '"
-                                                        << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30))
-                                                        << "' (not a medit ASCII file?)");
+                                                        << (TextScanner::isNumber(kw) ? kw : kw.substr(0, 30)) << "' ("
+                                                        << hint << ")");
   s.nextInt("format version", 0, 3);
   dim = 2;
   if (!s.atEnd() && lower(s.peek()) == "dimension") {

@@ -166,30 +166,31 @@ bool DomainGeometry::inside(const Vec2& p) const {
   return in;
 }
 
-double DomainGeometry::metricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const {
+double DomainGeometry::squaredMetricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const {
   const auto& poly = loops_[segs_[id].first];
   const int k = segs_[id].second;
   const Vec2& a = poly.points[k];
   const Vec2 d = poly.points[(k + 1) % poly.points.size()] - a;
   const double t = std::clamp(m.dot(p - a, d) / m.squaredLength(d), 0.0, 1.0);
-  return m.length(p - a - t * d);
+  return std::max(0.0, m.squaredLength(p - a - t * d));  // as Metric2::length clamps
 }
 
 double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, double searchRadius) const {
   double best = std::numeric_limits<double>::infinity();
-  grid_.forEach(p, searchRadius, [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
-  return best;
+  grid_.forEach(p, searchRadius, [&](int id) { best = std::min(best, squaredMetricDistanceToSegment(id, p, m)); });
+  return std::sqrt(best);
 }
 
 double DomainGeometry::metricDistanceToBoundary(const Vec2& p, const Metric2& m, const Vec2& halfWidths) const {
   double best = std::numeric_limits<double>::infinity();
   grid_.forEachInBox(p, halfWidths.x(), halfWidths.y(),
-                     [&](int id) { best = std::min(best, metricDistanceToSegment(id, p, m)); });
-  return best;
+                     [&](int id) { best = std::min(best, squaredMetricDistanceToSegment(id, p, m)); });
+  return std::sqrt(best);
 }
 
 double DomainGeometry::wrap(int l, double s) const {
   const double L = loops_[l].length;
+  if (s >= 0 && s < L) return s;  // what fmod returns there, exactly (2.4·10⁶ calls per layer remesh)
   s = std::fmod(s, L);
   if (s < 0) s += L;
   return s;

@@ -244,7 +244,8 @@ part_hostile() {
     hostile_case field_missing 'ff.sol:5: field 3 asked for, but the file has 2 solution fields' remesh -in "$OUT/files/ff.mesh" \
       -sol "$OUT/files/ff.sol" -met-field 3 -out "$OUT/hostile_field_missing.o.mesh"
   fi
-  m gmsh_msh_format '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n' "gmsh_msh_format.mesh:1: expected MeshVersionFormatted, got '.meshformat'"
+  m gmsh_msh_format '$MeshFormat\n4.1 0 8\n$EndMeshFormat\n' "gmsh_msh_format.mesh:1: expected MeshVersionFormatted, got '.meshformat' \\(a gmsh .msh file: write medit with gmsh -format mesh\\)"
+  m vtu_format '<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid">\n' "vtu_format.mesh:1: .*\\(an XML file \\(VTK\\?\\): convert with meshio"
   local a=(adapt --out-dir "$OUT/hostile_adapt" -v 0 --vtu off)
   hostile_case adapt_vertices_zero '--vertices must be > 0' "${a[@]}" --problem peak --vertices 0
   hostile_case adapt_vertices_huge 'final vertices must be in \[10, 1e9\]' "${a[@]}" --problem peak --vertices 1e12

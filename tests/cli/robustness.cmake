@@ -24,3 +24,20 @@ ablmg_cli_failure(adapt_vertices_zero "adapt: --vertices must be > 0, got 0" ada
 file(WRITE ${_rdir}/aniso_1e10.sol "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n5\n1 3\n1e10 0 1e-10\n1 0 1\n1 0 1\n1 0 1\n1 0 1\nEnd\n")
 ablmg_cli_failure(remesh_tensor_too_anisotropic "aniso_1e10.sol:6: tensor of vertex 1: tensor \\(1e\\+10, 0, 1e-10\\) is too anisotropic"
                   remesh -in ${PROJECT_SOURCE_DIR}/tests/data/square.mesh -sol ${_rdir}/aniso_1e10.sol -out ${_rdir}/aniso_1e10.mesh)
+# A load that is NaN somewhere (sqrt of a negative) is named at its point, not as a failed
+# CHOLMOD solve.
+file(WRITE ${_rdir}/nan_load.json "{\"mesh\": {\"structured\": {\"nx\": 8, \"ny\": 8}, \"domain\": [0, 0, 1, 1]}, \"problem\": {\"f\": \"sqrt(x-0.5)\", \"dirichlet\": {\"default\": \"0\"}}, \"output\": {\"vtu\": \"${_rdir}/nan_load.vtu\", \"report\": \"${_rdir}/nan_load.report.json\"}}")
+ablmg_cli_failure(solve_nan_load "assemble: f = -?nan at \\([0-9.]+, [0-9.]+\\) in triangle [0-9]+" solve ${_rdir}/nan_load.json)
+# A time step 10⁹ times too small ran for days (and overflowed the step counter past 2·10⁹).
+ablmg_cli_failure(transient_too_many_steps "transient options: \\(tEnd - tStart\\) / dt = .* = 5e\\+08 steps, more than 1e\\+06"
+                  transient --problem movingpeak --dt 1e-9 --vertices 400 --out-dir ${_rdir}/too_many_steps)
+# A hole whose corners lie off the uniform grids (x = 0.3 of [0, 2]): the uniform comparison is
+# skipped with a note; it failed the whole run after its last cycle.
+file(WRITE ${_rdir}/hole_off_grid.json "{\"domain\": {\"loops\": [[[0,0],[2,0],[2,1],[0,1]], [[0.3,0.3],[0.6,0.3],[0.6,0.6],[0.3,0.6]]]}, \"problem\": {\"f\": \"2*pi^2*sin(pi*x)*sin(pi*y)\", \"dirichlet\": {\"default\": \"sin(pi*x)*sin(pi*y)\"}, \"exact\": {\"u\": \"sin(pi*x)*sin(pi*y)\", \"ux\": \"pi*cos(pi*x)*sin(pi*y)\", \"uy\": \"pi*sin(pi*x)*cos(pi*y)\"}}}")
+add_test(NAME cli_adapt_uniform_off_grid COMMAND ablmg adapt ${_rdir}/hole_off_grid.json --target-vertices 300,600 --vtu off
+                                                 --out-dir ${_rdir}/hole_off_grid)
+set_tests_properties(cli_adapt_uniform_off_grid PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "Uniform: skipped from N=300 on \\(structuredMesh: .* is not a node")
+# A gmsh .msh passed as medit: the error names the format and the export.
+file(WRITE ${_rdir}/gmsh.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
+ablmg_cli_failure(remesh_gmsh_msh "gmsh.msh:1: expected MeshVersionFormatted, got '.meshformat' \\(a gmsh .msh file: write medit with gmsh -format mesh\\)"
+                  remesh -in ${_rdir}/gmsh.msh -hsiz 0.1 -out ${_rdir}/gmsh_msh.mesh)
