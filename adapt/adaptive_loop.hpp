@@ -191,11 +191,16 @@ struct AdaptOptions {
   /// with the aspect ratio the Hessian of u allows; M(z) bounds h_long where z is curved.
   /// Default 0.01 (measured in dual_weight.hpp); 0 = off (no dual Hessian recovery).
   double dualShare = 0.01;
-  /// β ∈ [0, 1] (0: off): singular grading at reentrant corners of the boundary, after the metric and
-  /// before gradation (gradeSingularCorners in metric_from_hessian.hpp: the corner's size
-  /// becomes max(β r*, hc/4) where the sizes around it follow h = A r^σ, r* = A^(1/(1−σ))).
-  /// Default ¼: the L-shape's H1 ratio to FreeFem++ 0.901 → 0.890 at 7.9·10³ vertices, the
-  /// share of H1² within 10⁻⁴ of the corner 1.7 → 0.2 % (measurements there).
+  /// β ∈ [0, 1] (0: off): singular grading at reentrant corners of the boundary (gradeSingularCorners
+  /// in metric_from_hessian.hpp: the corner's size becomes max(β r*, hc/4) where the sizes around it
+  /// follow h = A r^σ, r* = A^(1/(1−σ))). Default ¼: the L-shape's H1 ratio to FreeFem++ 0.901 →
+  /// 0.890 at 7.9·10³ vertices, the share of H1² within 10⁻⁴ of the corner 1.7 → 0.2 %
+  /// (measurements there). Applied last, after the rescales to N, then graded again (hgrad), so its
+  /// extra vertices are not counted: before the rescales (as it was first) the complexity integral
+  /// counted the corner's small size over its large background triangles and shrank the rest of the
+  /// mesh (the slit at 5·10² vertices: 433 for 540 aimed at), and the slit's corner lagged at the
+  /// sizes of one pass (its worst H1 ratio at 6.8·10⁴ vertices 0.893 → 0.888, L-shape, 5π/4 and
+  /// 7π/4 within ±0.002; to 10⁵ vertices, docs/experiments.md).
   double cornerGrading = 0.25;
   /// With dualShare > 0: the dual's Hessians are weighted per vertex by |tr H_u| (the recovered
   /// Laplacian of u_h) before their metric is built, M(|Δu_h| |H_z|; φ_z N) (adapt/dual_weight.hpp,
@@ -293,6 +298,8 @@ struct CycleReport {
   /// error measure that needs no exact solution; compare with l2Interp where both exist.
   double l2InterpEstimate = 0;
   double qMean = 0, qMin = 0;
+  /// Wall seconds: the solve, the Hessian recovery of u_h, the next metric (with the unit-load
+  /// dual's solve and recovery when the metric uses it: dualWeight, dualShare), the mesh.
   double tSolve = 0, tRecover = 0, tMetric = 0, tMesh = 0;
   double tAssembly = 0, tOrdering = 0, tFactor = 0;  ///< the parts of tSolve
   double tErrors = 0;                                ///< computeErrors (0 without an exact solution)
@@ -398,7 +405,8 @@ struct AdaptedMetric {
 };
 
 /// M for the next mesh: recoverHessians → metricFromHessians(targetVertices) → gradation if
-/// options.hgrad > 1, rescaled to the target complexity. Per vertex of `mesh`.
+/// options.hgrad > 1, rescaled to the target complexity → singular corners (cornerGrading) and
+/// gradation again, not rescaled. Per vertex of `mesh`.
 AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double targetVertices,
                           const AdaptOptions& options);
 

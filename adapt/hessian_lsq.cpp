@@ -6,9 +6,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
-#include <optional>
 
 namespace ablmg::adapt {
 namespace {
@@ -36,8 +36,9 @@ namespace {
 /// least-squares quadratic is the same in any affine frame (exactness for quadratics holds);
 /// only the conditioning changes. Coefficients back in x: ∇ = Tᵀ ∇_st, H = Tᵀ H_st T.
 /// Nothing (std::nullopt) if the scaled system still fails the |R_55| ≥ 1e-6 |R_00| test.
-std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, const std::vector<int>& patch,
-                                                          const Vec2& xv, const Eigen::VectorXd& b) {
+/// One fit per field of `fields` (the same patch and QR), into out[k]; false = nothing fitted.
+bool anisotropicFit(const Mesh2& mesh, const std::vector<int>& patch, const Vec2& xv,
+                    std::span<const std::span<const double>> fields, std::span<Eigen::Matrix<double, 6, 1>> out) {
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   for (int w : patch) {
     const Vec2 d = mesh.vertices[w] - xv;
@@ -51,7 +52,7 @@ std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, con
     e1 = std::max(e1, std::abs(p.x()));
     e2 = std::max(e2, std::abs(p.y()));
   }
-  if (!(e1 > 0 && e2 > 0)) return std::nullopt;  // collinear: only growth can help
+  if (!(e1 > 0 && e2 > 0)) return false;  // collinear: only growth can help
   const Eigen::Matrix2d T = Eigen::Vector2d(1 / e1, 1 / e2).asDiagonal() * Q.transpose();
   const int m = int(patch.size());
   Eigen::MatrixXd A(m, 6);
@@ -61,15 +62,18 @@ std::optional<Eigen::Matrix<double, 6, 1>> anisotropicFit(const Mesh2& mesh, con
   }
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
   const auto R = qr.matrixR();
-  if (!(std::abs(R(5, 5)) >= 1e-6 * std::abs(R(0, 0)))) return std::nullopt;
-  const Eigen::Matrix<double, 6, 1> c = qr.solve(b);
-  const Vec2 grad = T.transpose() * Vec2(c[1], c[2]);
-  Eigen::Matrix2d Hst;
-  Hst << 2 * c[3], c[4], c[4], 2 * c[5];
-  const Eigen::Matrix2d H = T.transpose() * Hst * T;
-  Eigen::Matrix<double, 6, 1> a;
-  a << c[0], grad.x(), grad.y(), 0.5 * H(0, 0), 0.5 * (H(0, 1) + H(1, 0)), 0.5 * H(1, 1);
-  return a;
+  if (!(std::abs(R(5, 5)) >= 1e-6 * std::abs(R(0, 0)))) return false;
+  Eigen::VectorXd b(m);
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    for (int i = 0; i < m; ++i) b[i] = fields[k][std::size_t(patch[std::size_t(i)])];
+    const Eigen::Matrix<double, 6, 1> c = qr.solve(b);
+    const Vec2 grad = T.transpose() * Vec2(c[1], c[2]);
+    Eigen::Matrix2d Hst;
+    Hst << 2 * c[3], c[4], c[4], 2 * c[5];
+    const Eigen::Matrix2d H = T.transpose() * Hst * T;
+    out[k] << c[0], grad.x(), grad.y(), 0.5 * H(0, 0), 0.5 * (H(0, 1) + H(1, 0)), 0.5 * H(1, 1);
+  }
+  return true;
 }
 }  // namespace
 
@@ -104,6 +108,14 @@ VertexGraph vertexGraph(const Mesh2& mesh) {
 
 Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGraph& g, std::span<const double> u, int v,
                                               std::vector<int>& patch, std::vector<int>& mark) {
+  Eigen::Matrix<double, 6, 1> a;
+  const std::span<const double> fields[1] = {u};
+  patchQuadraticFits(mesh, g, fields, v, patch, mark, std::span<Eigen::Matrix<double, 6, 1>>(&a, 1));
+  return a;
+}
+
+void patchQuadraticFits(const Mesh2& mesh, const VertexGraph& g, std::span<const std::span<const double>> fields, int v,
+                        std::vector<int>& patch, std::vector<int>& mark, std::span<Eigen::Matrix<double, 6, 1>> out) {
   // Ring-by-ring breadth-first growth; `mark[w] == v + 1` flags members (reset-free).
   patch.clear();
   patch.push_back(v);
@@ -133,11 +145,9 @@ Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGra
     ABLMG_REQUIRE(r > 0, "recoverHessians: isolated vertex " << v);
     const int m = int(patch.size());
     Eigen::MatrixXd A(m, 6);
-    Eigen::VectorXd b(m);
     for (int i = 0; i < m; ++i) {
       const Vec2 d = (mesh.vertices[patch[i]] - xv) / r;
       A.row(i) << 1.0, d.x(), d.y(), d.x() * d.x(), d.x() * d.y(), d.y() * d.y();
-      b[i] = u[patch[i]];
     }
     if (m >= 6) {
       Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
@@ -147,18 +157,23 @@ Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGra
         ABLMG_REQUIRE(r5 > 1e-13 * r0, "recoverHessians: the patch of vertex " << v << " cannot determine a quadratic ("
                                                                                << m
                                                                                << " points, whole component used)");
-        Eigen::Matrix<double, 6, 1> a = qr.solve(b);
-        a[1] /= r;
-        a[2] /= r;
-        a[3] /= r * r;
-        a[4] /= r * r;
-        a[5] /= r * r;
-        return a;
+        Eigen::VectorXd b(m);
+        for (std::size_t k = 0; k < fields.size(); ++k) {
+          for (int i = 0; i < m; ++i) b[i] = fields[k][std::size_t(patch[std::size_t(i)])];
+          Eigen::Matrix<double, 6, 1>& a = out[k];
+          a = qr.solve(b);
+          a[1] /= r;
+          a[2] /= r;
+          a[3] /= r * r;
+          a[4] /= r * r;
+          a[5] /= r * r;
+        }
+        return;
       }
       // A thin patch (aspect ratio beyond ~10³: the t² column is ~1e-6 of the s² one) fails the
       // test above although its points determine a quadratic; growing it ring by ring would take
       // thousands of rings along a layer. Refit in the patch's principal frame instead.
-      if (const auto a = anisotropicFit(mesh, patch, xv, b)) return *a;
+      if (anisotropicFit(mesh, patch, xv, fields, out)) return;
     }
     ABLMG_REQUIRE(grew,
                   "recoverHessians: the connected piece of vertex " << v << " has only " << m << " vertices (< 6)");
@@ -204,6 +219,25 @@ std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) 
 }  // namespace
 
 std::vector<Hessian2> recoverHessiansDouble(const Mesh2& mesh, std::span<const double> u);  // hessian_double_l2.cpp
+
+std::array<std::vector<Hessian2>, 2> recoverHessians(const Mesh2& mesh, std::span<const double> u,
+                                                     std::span<const double> z, HessianMethod method) {
+  if (method != HessianMethod::LeastSquares || detail::hasSeveralSubdomains(mesh))
+    return {recoverHessians(mesh, u, method), recoverHessians(mesh, z, method)};
+  detail::checkField(mesh, u, "recoverHessians");
+  detail::checkField(mesh, z, "recoverHessians");
+  const auto g = detail::vertexGraph(mesh);
+  const int n = mesh.numVertices();
+  std::array<std::vector<Hessian2>, 2> out{std::vector<Hessian2>(n), std::vector<Hessian2>(n)};
+  const std::span<const double> fields[2] = {u, z};
+  const auto fit = [&](int v, std::vector<int>& patch, std::vector<int>& mark) {
+    Eigen::Matrix<double, 6, 1> a[2];
+    detail::patchQuadraticFits(mesh, g, fields, v, patch, mark, a);
+    for (int k = 0; k < 2; ++k) out[std::size_t(k)][std::size_t(v)] << 2 * a[k][3], a[k][4], a[k][4], 2 * a[k][5];
+  };
+  detail::forEachVertex(n, fit);
+  return out;
+}
 
 namespace detail {
 std::vector<Hessian2> recoverHessiansOneDomain(const Mesh2& mesh, std::span<const double> u, HessianMethod method) {

@@ -37,6 +37,7 @@
 #include "ablmg/core/mesh2.hpp"
 #include "ablmg/core/vec2.hpp"
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <span>
 #include <string>
@@ -56,6 +57,12 @@ std::string toString(HessianMethod m);
 /// value is not finite (names the vertex).
 std::vector<Hessian2> recoverHessians(const Mesh2& mesh, std::span<const double> u, HessianMethod method);
 
+/// The Hessians of two fields on one mesh, {of u, of z}, each the same as recoverHessians gives
+/// it; with LeastSquares on one subdomain the patches and their QR factorisations are shared
+/// (a solution and its dual on one mesh: half the recovery's work).
+std::array<std::vector<Hessian2>, 2> recoverHessians(const Mesh2& mesh, std::span<const double> u,
+                                                     std::span<const double> z, HessianMethod method);
+
 /// Per-vertex gradients from the patch quadratic fit (exact for quadratics at every vertex).
 std::vector<Vec2> recoverGradients(const Mesh2& mesh, std::span<const double> u);
 
@@ -73,6 +80,10 @@ VertexGraph vertexGraph(const Mesh2& mesh);
 /// Coefficients (a0..a5) of the patch fit at vertex v, in unscaled coordinates dx = x − x_v.
 Eigen::Matrix<double, 6, 1> patchQuadraticFit(const Mesh2& mesh, const VertexGraph& g, std::span<const double> u, int v,
                                               std::vector<int>& patch, std::vector<int>& mark);
+/// The same for several fields on one patch (the patch and its QR depend on the mesh only):
+/// out[k] for fields[k], each as patchQuadraticFit gives it.
+void patchQuadraticFits(const Mesh2& mesh, const VertexGraph& g, std::span<const std::span<const double>> fields, int v,
+                        std::vector<int>& patch, std::vector<int>& mark, std::span<Eigen::Matrix<double, 6, 1>> out);
 void checkField(const Mesh2& mesh, std::span<const double> u, const char* where);
 /// fit(v, patch, mark) for v in [0, n), in parallel above a size (per-thread scratch `patch`,
 /// `mark` of n zeros); an exception of any call is rethrown (the first in vertex order).

@@ -4,6 +4,7 @@
 #include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -273,13 +274,76 @@ Domain Domain::withSlit(const std::vector<Vec2>& pts, int tagLeft, int tagRight)
   } catch (const InputError& e) { throw InputError(where(n - 1) + " (the tip): " + e.what()); }
 }
 
+namespace {
+
+/// A boundary segment a → b, segment `index` of loop `loop`, with its bounding box.
+struct Segment {
+  Vec2 a, b, lo, hi;
+  int loop, index;
+};
+
+/// The pairs of segments whose bounding boxes overlap (closed boxes: touching counts), each once,
+/// as (i, j) with i < j, through a uniform grid of about one cell per segment over the segments'
+/// bounding box: the pair is visited in the lowest cell both boxes cover. Expected O(n) for a
+/// boundary whose segments are short against the domain; a sweep in one coordinate is O(n²)
+/// on a boundary with many segments on one vertical side.
+template <class Visit>
+void forOverlappingPairs(const std::vector<Segment>& segs, Visit visit) {
+  const std::size_t n = segs.size();
+  if (n < 2) return;
+  Vec2 lo = segs[0].lo, hi = segs[0].hi;
+  for (const Segment& s : segs) {
+    lo = lo.cwiseMin(s.lo);
+    hi = hi.cwiseMax(s.hi);
+  }
+  // Fewer cells when long segments would cover too many of them (memory stays O(n)).
+  for (int g = std::clamp(int(std::ceil(std::sqrt(double(n)))), 1, 2048);; g = std::max(1, g / 2)) {
+    const double w = hi.x() > lo.x() ? (hi.x() - lo.x()) / g : 1, h = hi.y() > lo.y() ? (hi.y() - lo.y()) / g : 1;
+    const auto cell = [&](double v, double origin, double size) {
+      return std::clamp(int(std::floor((v - origin) / size)), 0, g - 1);
+    };
+    std::vector<std::array<int, 4>> range(n);  // cx0, cy0, cx1, cy1
+    std::size_t entries = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      range[i] = {cell(segs[i].lo.x(), lo.x(), w), cell(segs[i].lo.y(), lo.y(), h), cell(segs[i].hi.x(), lo.x(), w),
+                  cell(segs[i].hi.y(), lo.y(), h)};
+      entries += std::size_t(range[i][2] - range[i][0] + 1) * std::size_t(range[i][3] - range[i][1] + 1);
+    }
+    if (entries > 64 * n && g > 1) continue;
+    std::vector<std::size_t> start(std::size_t(g) * std::size_t(g) + 1, 0);
+    for (const auto& r : range)
+      for (int cy = r[1]; cy <= r[3]; ++cy)
+        for (int cx = r[0]; cx <= r[2]; ++cx) ++start[std::size_t(cy) * g + cx + 1];
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    std::vector<int> members(entries);
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < n; ++i)  // in index order, so each cell's list is sorted
+      for (int cy = range[i][1]; cy <= range[i][3]; ++cy)
+        for (int cx = range[i][0]; cx <= range[i][2]; ++cx) members[fill[std::size_t(cy) * g + cx]++] = int(i);
+    for (int cy = 0; cy < g; ++cy)
+      for (int cx = 0; cx < g; ++cx) {
+        const std::size_t c = std::size_t(cy) * g + cx;
+        for (std::size_t p = start[c]; p < start[c + 1]; ++p)
+          for (std::size_t q = p + 1; q < start[c + 1]; ++q) {
+            const int i = members[p], j = members[q];
+            const auto &ri = range[std::size_t(i)], &rj = range[std::size_t(j)];
+            if (segs[std::size_t(i)].hi.x() < segs[std::size_t(j)].lo.x() ||
+                segs[std::size_t(j)].hi.x() < segs[std::size_t(i)].lo.x() ||
+                segs[std::size_t(i)].hi.y() < segs[std::size_t(j)].lo.y() ||
+                segs[std::size_t(j)].hi.y() < segs[std::size_t(i)].lo.y())
+              continue;
+            if (std::max(ri[0], rj[0]) != cx || std::max(ri[1], rj[1]) != cy) continue;  // seen in another cell
+            visit(i, j);
+          }
+      }
+    return;
+  }
+}
+
+}  // namespace
+
 void Domain::validate() const {
-  struct Seg {
-    double xmin, xmax;
-    int loop, index;
-    Vec2 a, b;
-  };
-  std::vector<Seg> segs;
+  std::vector<Segment> segs;
   for (std::size_t l = 0; l < loops_.size(); ++l) {
     const auto& pts = loops_[l].points;
     const std::size_t n = pts.size();
@@ -288,40 +352,40 @@ void Domain::validate() const {
       const Vec2& b = pts[(k + 1) % n];
       ABLMG_REQUIRE(a != b, "domain: " << loopName(l) << " " << l << " segment " << k << " has zero length (point ("
                                        << a.x() << ", " << a.y() << ") repeated)");
-      segs.push_back({std::min(a.x(), b.x()), std::max(a.x(), b.x()), int(l), int(k), a, b});
+      segs.push_back({a, b, a.cwiseMin(b), a.cwiseMax(b), int(l), int(k)});
     }
   }
-  // Sweep in x: only segments whose x-ranges overlap are tested against each other.
-  std::vector<int> order(segs.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
-  std::sort(order.begin(), order.end(),
-            [&](int i, int j) { return segs[i].xmin < segs[j].xmin || (segs[i].xmin == segs[j].xmin && i < j); });
   std::vector<std::vector<Vec2>> repeated(loops_.size());
   for (std::size_t l = 0; l < loops_.size(); ++l) repeated[l] = repeatedPoints(loops_[l]);
-  for (std::size_t oi = 0; oi < order.size(); ++oi) {
-    const Seg& s = segs[order[oi]];
-    for (std::size_t oj = oi + 1; oj < order.size() && segs[order[oj]].xmin <= s.xmax; ++oj) {
-      const Seg& t = segs[order[oj]];
-      const int n = int(loops_[s.loop].points.size());
-      const bool neighbours = s.loop == t.loop && ((s.index + 1) % n == t.index || (t.index + 1) % n == s.index);
-      bool bad;
-      const auto& rep = repeated[std::size_t(s.loop)];
-      const bool gapPair = s.loop == t.loop && s.a == t.b && s.b == t.a;  // the two lips of a slit
-      const bool meetAtRepeated = s.loop == t.loop && !rep.empty() &&
-                                  ((isRepeated(rep, s.a) && (s.a == t.a || s.a == t.b)) ||
-                                   (isRepeated(rep, s.b) && (s.b == t.a || s.b == t.b)));
-      if (gapPair) {
-        bad = false;
-      } else if (neighbours || meetAtRepeated) {
-        // consecutive segments share one point; they must not fold back onto each other
-        bad = segmentsCross(s.a, s.b, t.a, t.b);
-      } else {
-        bad = segmentsIntersect(s.a, s.b, t.a, t.b);
-      }
-      ABLMG_REQUIRE(!bad, "domain: " << loopName(s.loop) << " " << s.loop << " segment " << s.index << " intersects "
-                                     << loopName(t.loop) << " " << t.loop << " segment " << t.index
-                                     << " (self-intersecting or touching boundary)");
+  // Segments are numbered loop by loop, so the first bad pair in (i, j) order is the same whatever
+  // order the pairs are visited in: it is the one reported.
+  std::pair<int, int> firstBad{-1, -1};
+  forOverlappingPairs(segs, [&](int i, int j) {
+    if (firstBad.first >= 0 && std::pair(i, j) >= firstBad) return;
+    const Segment &s = segs[std::size_t(i)], &t = segs[std::size_t(j)];
+    const int n = int(loops_[std::size_t(s.loop)].points.size());
+    const bool neighbours = s.loop == t.loop && ((s.index + 1) % n == t.index || (t.index + 1) % n == s.index);
+    const auto& rep = repeated[std::size_t(s.loop)];
+    const bool gapPair = s.loop == t.loop && s.a == t.b && s.b == t.a;  // the two lips of a slit
+    const bool meetAtRepeated =
+        s.loop == t.loop && !rep.empty() &&
+        ((isRepeated(rep, s.a) && (s.a == t.a || s.a == t.b)) || (isRepeated(rep, s.b) && (s.b == t.a || s.b == t.b)));
+    bool bad;
+    if (gapPair) {
+      bad = false;
+    } else if (neighbours || meetAtRepeated) {
+      // consecutive segments share one point; they must not fold back onto each other
+      bad = segmentsCross(s.a, s.b, t.a, t.b);
+    } else {
+      bad = segmentsIntersect(s.a, s.b, t.a, t.b);
     }
+    if (bad) firstBad = {i, j};
+  });
+  if (firstBad.first >= 0) {
+    const Segment &s = segs[std::size_t(firstBad.first)], &t = segs[std::size_t(firstBad.second)];
+    ABLMG_REQUIRE(false, "domain: " << loopName(std::size_t(s.loop)) << " " << s.loop << " segment " << s.index
+                                    << " intersects " << loopName(std::size_t(t.loop)) << " " << t.loop << " segment "
+                                    << t.index << " (self-intersecting or touching boundary)");
   }
   // Holes must lie inside the outer loop (no crossings, so testing one point suffices).
   const Domain outerOnly = [&] {

@@ -2,8 +2,10 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/parallel_failure.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ablmg {
@@ -23,6 +25,28 @@ void MetricField::sqrtDeterminants(std::span<const Vec2> points, std::span<doubl
   std::vector<Metric2> ms(points.size());
   evaluate(points, ms);
   for (std::size_t i = 0; i < points.size(); ++i) out[i] = std::sqrt(ms[i].det());
+}
+
+namespace {
+Vec2 cellCentre(const Vec2& lo, const Vec2& d, int x, int y) {
+  return Vec2(lo + Vec2((x + 0.5) * d.x(), (y + 0.5) * d.y()));
+}
+}  // namespace
+
+void MetricField::gridSqrtDeterminants(const Vec2& lo, const Vec2& d, int gx, int gy, std::span<const char> mask,
+                                       std::span<double> out) const {
+  ABLMG_ASSERT(mask.size() == std::size_t(gx) * std::size_t(gy) && out.size() == mask.size(), "");
+  std::vector<Vec2> pts;
+  std::vector<std::size_t> at;
+  for (int y = 0; y < gy; ++y)
+    for (int x = 0; x < gx; ++x)
+      if (const std::size_t i = std::size_t(y) * std::size_t(gx) + std::size_t(x); mask[i]) {
+        pts.push_back(cellCentre(lo, d, x, y));
+        at.push_back(i);
+      }
+  std::vector<double> v(pts.size());
+  sqrtDeterminants(pts, v);
+  for (std::size_t k = 0; k < at.size(); ++k) out[at[k]] = v[k];
 }
 
 Vec2 MetricField::latticeRow(const Vec2&, int&) const { return Vec2::Zero(); }
@@ -130,6 +154,77 @@ void BackgroundMetricField::sqrtDeterminants(std::span<const Vec2> points, std::
       }
     });
   failure.rethrow();
+}
+
+void BackgroundMetricField::gridSqrtDeterminants(const Vec2& lo, const Vec2& d, int gx, int gy,
+                                                 std::span<const char> mask, std::span<double> out) const {
+  ABLMG_ASSERT(mask.size() == std::size_t(gx) * std::size_t(gy) && out.size() == mask.size(), "");
+  ABLMG_ASSERT(d.x() > 0 && d.y() > 0, "");
+  // The triangles bucketed by bands of kBand grid rows (in triangle order within a band), from
+  // the rows of their bounding boxes' cell centres (one more on each side against rounding).
+  constexpr int kBand = 16;
+  const int bands = (gy + kBand - 1) / kBand, nt = mesh_.numTriangles();
+  const auto cellRange = [](double a, double b, double o, double h, int g) {
+    const int i0 = std::max(0, int(std::floor((a - o) / h - 0.5)));
+    const int i1 = std::min(g - 1, int(std::ceil((b - o) / h - 0.5)));
+    return std::pair{i0, i1};
+  };
+  std::vector<int> first(std::size_t(bands) + 1, 0), ids;
+  std::vector<std::array<int, 2>> rows(static_cast<std::size_t>(nt));
+  for (int t = 0; t < nt; ++t) {
+    const auto& tr = mesh_.triangles[std::size_t(t)];
+    const Vec2 &a = mesh_.vertices[tr[0]], &b = mesh_.vertices[tr[1]], &c = mesh_.vertices[tr[2]];
+    const auto [y0, y1] =
+        cellRange(std::min({a.y(), b.y(), c.y()}), std::max({a.y(), b.y(), c.y()}), lo.y(), d.y(), gy);
+    rows[std::size_t(t)] = {y0, y1};
+    if (y0 <= y1)
+      for (int band = y0 / kBand; band <= y1 / kBand; ++band) ++first[std::size_t(band) + 1];
+  }
+  for (int band = 0; band < bands; ++band) first[std::size_t(band) + 1] += first[std::size_t(band)];
+  ids.resize(std::size_t(first.back()));
+  std::vector<int> fill(first.begin(), first.end() - 1);
+  for (int t = 0; t < nt; ++t)
+    if (rows[std::size_t(t)][0] <= rows[std::size_t(t)][1])
+      for (int band = rows[std::size_t(t)][0] / kBand; band <= rows[std::size_t(t)][1] / kBand; ++band)
+        ids[std::size_t(fill[std::size_t(band)]++)] = t;
+  std::vector<char> done(mask.size(), 0);
+#pragma omp parallel for schedule(dynamic, 1) if (bands > 1 && nt >= 2048)
+  for (int band = 0; band < bands; ++band)
+    for (int j = first[std::size_t(band)]; j < first[std::size_t(band) + 1]; ++j) {
+      const int t = ids[std::size_t(j)];
+      const auto& tr = mesh_.triangles[std::size_t(t)];
+      const Vec2 &a = mesh_.vertices[tr[0]], &b = mesh_.vertices[tr[1]], &c = mesh_.vertices[tr[2]];
+      const auto [x0, x1] =
+          cellRange(std::min({a.x(), b.x(), c.x()}), std::max({a.x(), b.x(), c.x()}), lo.x(), d.x(), gx);
+      const int y0 = std::max(rows[std::size_t(t)][0], band * kBand);
+      const int y1 = std::min(rows[std::size_t(t)][1], band * kBand + kBand - 1);
+      const double area2 = signedArea2(a, b, c);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const std::size_t i = std::size_t(y) * std::size_t(gx) + std::size_t(x);
+          if (!mask[i] || done[i]) continue;
+          const Vec2 p = cellCentre(lo, d, x, y);
+          if (orient2d(b, c, p) < 0 || orient2d(c, a, p) < 0 || orient2d(a, b, p) < 0) continue;
+          // PointLocator's barycentric weights (clamped to ≥ 0, normalised) and the sum of
+          // sqrtDeterminants, in the same order: the same bits.
+          double w[3] = {signedArea2(p, b, c) / area2, signedArea2(a, p, c) / area2, signedArea2(a, b, p) / area2};
+          double s = 0;
+          for (double& v : w) s += (v = std::max(0.0, v));
+          double halfTrace = 0;
+          for (int k = 0; k < 3; ++k)
+            halfTrace += (s > 0 ? w[k] / s : 1.0 / 3.0) * 0.5 * (logs_[tr[k]].m11() + logs_[tr[k]].m22());
+          out[i] = std::exp(halfTrace);
+          done[i] = 1;
+        }
+    }
+  // Centres outside every triangle: located (and extrapolated) one by one.
+  std::vector<char> rest(mask.size(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    rest[i] = char(mask[i] && !done[i]);
+    any = any || rest[i];
+  }
+  if (any) MetricField::gridSqrtDeterminants(lo, d, gx, gy, rest, out);
 }
 
 void BackgroundMetricField::evaluate(std::span<const Vec2> points, std::span<Metric2> out) const {

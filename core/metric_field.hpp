@@ -41,6 +41,12 @@ class MetricField {
   /// ∫ √det M dA, which sizes the node count. The default evaluates M; a background field
   /// needs no tensor (see there).
   virtual void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const;
+  /// √det M at the centres lo + ((x + ½) d.x, (y + ½) d.y) of the cells of a gx × gy grid whose
+  /// `mask[y gx + x]` is set, into out[y gx + x] (other entries untouched; mask and out hold
+  /// gx gy entries). The default calls sqrtDeterminants on those centres in raster order; a
+  /// background field rasterises its triangles onto the grid (see there).
+  virtual void gridSqrtDeterminants(const Vec2& lo, const Vec2& d, int gx, int gy, std::span<const char> mask,
+                                    std::span<double> out) const;
   /// True if at() is the same everywhere (lets the mesher skip re-evaluation).
   virtual bool isConstant() const { return false; }
   /// True if at() and evaluate() may be called from several threads at once (the mesher then
@@ -111,6 +117,14 @@ class BackgroundMetricField final : public MetricField {
   /// consecutive points, each from the previous point's triangle (neighbours on a raster row
   /// share triangles), the chunks in parallel (OpenMP; the same values for any thread count).
   void sqrtDeterminants(std::span<const Vec2> points, std::span<double> out) const override;
+  /// Each triangle visits the grid cells of its bounding box and takes the centres it contains
+  /// (exact orientation tests; a centre on a shared edge goes to the lowest triangle), with the
+  /// barycentric weights and the sum of sqrtDeterminants, so a centre inside a triangle gets the
+  /// same bits as there; centres no triangle holds (outside the mesh) go to sqrtDeterminants.
+  /// O(cells + triangles), where locating each centre cost a walk (several times more); bands of
+  /// grid rows in parallel (OpenMP; the same values for any thread count).
+  void gridSqrtDeterminants(const Vec2& lo, const Vec2& d, int gx, int gy, std::span<const char> mask,
+                            std::span<double> out) const override;
   const Mesh2& mesh() const { return mesh_; }
   const std::vector<Metric2>& metrics() const { return metrics_; }
 

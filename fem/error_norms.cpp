@@ -22,6 +22,7 @@ ErrorReport computeErrors(const Mesh2& mesh, const Eigen::VectorXd& uh, const Ex
                                                                    << mesh.numVertices() << " vertices");
   const TriangleRule& rule = triangleRule(degree);
   const bool withGrad = bool(exact.grad);
+  const bool both = withGrad && bool(exact.valueAndGrad);
   ErrorReport r;
   const int nt = mesh.numTriangles();
   r.elementL2.resize(nt);
@@ -50,12 +51,14 @@ ErrorReport computeErrors(const Mesh2& mesh, const Eigen::VectorXd& uh, const Ex
       for (int q = 0; q < rule.size(); ++q) {
         const auto& l = rule.points[q];
         const Vec2 x = l[0] * p[0] + l[1] * p[1] + l[2] * p[2];
-        const double u = exact.u(x.x(), x.y());
+        Vec2 grad;
+        const double u = both ? exact.valueAndGrad(x.x(), x.y(), grad) : exact.u(x.x(), x.y());
+        if (withGrad && !both) grad = exact.grad(x.x(), x.y());
         const double uhq = l[0] * uh[tri[0]] + l[1] * uh[tri[1]] + l[2] * uh[tri[2]];
         const double uiq = l[0] * ui[tri[0]] + l[1] * ui[tri[1]] + l[2] * ui[tri[2]];
         e0 += rule.weights[q] * (u - uhq) * (u - uhq);
         ei += rule.weights[q] * (u - uiq) * (u - uiq);
-        if (withGrad) e1 += rule.weights[q] * (exact.grad(x.x(), x.y()) - gradUh).squaredNorm();
+        if (withGrad) e1 += rule.weights[q] * (grad - gradUh).squaredNorm();
       }
       r.elementL2[t] = area * e0;  // squared for now
       interpSq[t] = area * ei;
@@ -81,7 +84,7 @@ ErrorReport computeErrors(const Mesh2& mesh, const Eigen::VectorXd& uh, const Ex
 }
 
 double interpolationErrorL2(const Mesh2& mesh, const ScalarFn& u, int degree) {
-  return computeErrors(mesh, interpolate(mesh, u), ExactSolution{u, {}}, degree).l2;
+  return computeErrors(mesh, interpolate(mesh, u), ExactSolution{u, {}, false, {}}, degree).l2;
 }
 
 }  // namespace ablmg::fem

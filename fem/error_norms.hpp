@@ -23,6 +23,8 @@ namespace ablmg::fem {
 /// ∇u. Beware: a lambda returning an Eigen expression (`return Vec2(a, b) * s;`) returns a
 /// dangling expression; declare it `[](double x, double y) -> Vec2 { ... }`.
 using GradientFn = std::function<Vec2(double x, double y)>;
+/// u(x, y), with ∇u written to `grad`.
+using ValueGradientFn = std::function<double(double x, double y, Vec2& grad)>;
 
 struct ExactSolution {
   ScalarFn u;
@@ -30,6 +32,10 @@ struct ExactSolution {
   /// True when u and grad may be called from several threads at once (pure lambdas, as
   /// TestProblem's); computeErrors() then runs in parallel, with bitwise the same result.
   bool threadSafe = false;
+  /// Optional: u and ∇u at once (returns u, writes ∇u), for solutions whose two share work (a
+  /// corner's r and θ). It must give the same values as u and grad; computeErrors then calls it
+  /// instead of them.
+  ValueGradientFn valueAndGrad = {};
 };
 
 struct ErrorReport {

@@ -178,9 +178,9 @@ struct Dissection {
   /// separatorSizes' counts over the vertices [first, last).
   template <class Counts>
   void countNearCuts(const int* first, const int* last, const double (&m)[4][kQuantiles], int s, Counts& counts) const {
-    auto& middle = counts.middle;
-    auto& lowerTouching = counts.lowerTouching;
-    auto& upperTouching = counts.upperTouching;
+    // Local counters (not through `counts`, which the atomic mark loads would make the
+    // compiler reload and store around each test), added to `counts` at the end.
+    long middle[4][kQuantiles] = {}, lowerTouching[4][kQuantiles] = {}, upperTouching[4][kQuantiles] = {};
     for (const int* pv = first; pv != last; ++pv) {
       const int v = *pv;
       const std::array<double, 4> c4 = projections(points[v]);
@@ -211,6 +211,12 @@ struct Dissection {
         }
       }
     }
+    for (int d = 0; d < 4; ++d)
+      for (int i = 0; i < kQuantiles; ++i) {
+        counts.middle[d][i] += middle[d][i];
+        counts.lowerTouching[d][i] += lowerTouching[d][i];
+        counts.upperTouching[d][i] += upperTouching[d][i];
+      }
   }
 
   /// The piece's extent along each direction d: [lo[d], hi[d]] of along(·, d); with `wide`,
@@ -222,14 +228,15 @@ struct Dissection {
     const std::array<double, 4> first = projections(points[set[0]]);
     std::vector<Extent> part(std::size_t(parts), Extent{first, first});
     forRanges(set.size(), parts, wide, [&](int r, std::size_t b, std::size_t e) {
-      Extent& x = part[std::size_t(r)];
+      std::array<double, 4> lo = first, hi = first;  // in registers, not through the vector
       for (std::size_t k = b; k < e; ++k) {
         const std::array<double, 4> c = projections(points[set[k]]);
         for (int d = 0; d < 4; ++d) {
-          x.lo[d] = std::min(x.lo[d], c[d]);
-          x.hi[d] = std::max(x.hi[d], c[d]);
+          lo[d] = std::min(lo[d], c[d]);
+          hi[d] = std::max(hi[d], c[d]);
         }
       }
+      part[std::size_t(r)] = {lo, hi};
     });
     for (const Extent& x : part)
       for (int d = 0; d < 4; ++d) {

@@ -56,6 +56,12 @@ Vec2 cornerGrad(double omega, double x, double y) {
   const double r = std::hypot(x, y), t = angle(x, y, omega), a = pi / omega;
   return Vec2(std::sin((a - 1) * t), std::cos((a - 1) * t)) * (a * std::pow(r, a - 1));
 }
+/// cornerU and cornerGrad with one r and θ (the same values).
+double cornerUAndGrad(double omega, double x, double y, Vec2& grad) {
+  const double r = std::hypot(x, y), t = angle(x, y, omega), a = pi / omega;
+  grad = Vec2(std::sin((a - 1) * t), std::cos((a - 1) * t)) * (a * std::pow(r, a - 1));
+  return r == 0 ? 0.0 : std::pow(r, a) * std::sin(a * t);
+}
 
 /// atan(α(r − r0)), r = |x − c|: value, gradient and −Δ (u_r = α/(1+s²), u_rr = −2α²s/(1+s²)², s = α(r − r0)).
 struct Front {
@@ -106,6 +112,7 @@ void buildCorner(TestProblem& p, double omega) {
   // Mitchell (2013), reentrant corner: u = r^(π/ω) sin(πθ/ω), harmonic (f = 0).
   p.u = [=](double x, double y) { return cornerU(omega, x, y); };
   p.grad = [=](double x, double y) { return cornerGrad(omega, x, y); };
+  p.valueAndGrad = [=](double x, double y, Vec2& g) { return cornerUAndGrad(omega, x, y, g); };
   p.f = [](double, double) { return 0.0; };
 }
 
@@ -145,6 +152,12 @@ void buildMultiple(TestProblem& p) {
   p.u = [=](double x, double y) { return cornerU(omega, x, y) + k.u(x, y) + w.u(x, y) + std::exp(-(1 + y) / e); };
   p.grad = [=](double x, double y) -> Vec2 {
     return cornerGrad(omega, x, y) + k.grad(x, y) + w.grad(x, y) + Vec2(0, -std::exp(-(1 + y) / e) / e);
+  };
+  p.valueAndGrad = [=](double x, double y, Vec2& g) {
+    Vec2 corner;
+    const double uc = cornerUAndGrad(omega, x, y, corner), layer = std::exp(-(1 + y) / e);
+    g = corner + k.grad(x, y) + w.grad(x, y) + Vec2(0, -layer / e);
+    return uc + k.u(x, y) + w.u(x, y) + layer;
   };
   p.f = [=](double x, double y) { return k.f(x, y) + w.f(x, y) - std::exp(-(1 + y) / e) / (e * e); };
 }

@@ -44,9 +44,10 @@ struct TestProblem {
   Domain domain;
   ScalarFn u;
   GradientFn grad;
-  ScalarFn f;  ///< −Δu
+  ScalarFn f;                         ///< −Δu
+  ValueGradientFn valueAndGrad = {};  ///< u and ∇u at once where they share work (else empty)
 
-  ExactSolution exact() const { return {u, grad, true}; }
+  ExactSolution exact() const { return {u, grad, true, valueAndGrad}; }
   /// κ = 1, f, Dirichlet data u on every boundary tag.
   PoissonProblem poisson() const;
 };

@@ -98,7 +98,9 @@ ExactSolution TransientProblem::exactAt(double t) const {
   const SpaceTimeFn uu = u;
   const SpaceTimeGradientFn gg = grad;
   return {[uu, t](double x, double y) { return uu(x, y, t); },
-          [gg, t](double x, double y) -> Vec2 { return gg(x, y, t); }, true};
+          [gg, t](double x, double y) -> Vec2 { return gg(x, y, t); },
+          true,
+          {}};
 }
 
 std::vector<std::string> transientProblemNames() { return {"movingpeak", "front"}; }

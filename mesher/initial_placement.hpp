@@ -78,8 +78,9 @@ class DomainGeometry {
   double indexArc(int l, double s) const;
 
  private:
-  /// Metric distance (eq. 3, constant m) from p to global segment `id`.
-  double metricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const;
+  /// Squared metric distance (eq. 3, constant m) from p to global segment `id`, ≥ 0: the
+  /// boundary distances take one square root of the smallest (√ is monotone: the same value).
+  double squaredMetricDistanceToSegment(int id, const Vec2& p, const Metric2& m) const;
   std::vector<LoopPolyline> loops_;
   std::vector<std::pair<int, int>> segs_;  ///< (loop, k) per global segment id
   BucketGrid grid_;

@@ -1,10 +1,13 @@
 #include "ablmg/core/domain.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <string>
 
 using namespace ablmg;
 
@@ -79,4 +82,52 @@ TEST(Domain, DiskIsSmoothWithoutCorners) {
   EXPECT_TRUE(d.corners(0).empty());
   EXPECT_NEAR(d.area(), 100 * std::numbers::pi, 100 * std::numbers::pi * 1e-4);
   EXPECT_EQ(Domain::rectangle(0, 0, 1, 1).corners(0).size(), 4u);
+}
+
+// The crossing check visits the pairs of segments through a grid: on random polygons (most of them
+// self-intersecting) it must report the same first bad pair as testing every pair.
+TEST(Domain, ValidationReportsTheFirstCrossingOfAllPairs) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> coord(0, 1);
+  int crossing = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    BoundaryLoop l;
+    const int n = 3 + trial % 40;
+    for (int k = 0; k < n; ++k) l.points.push_back({coord(rng), coord(rng)});
+    double area = 0;
+    for (int k = 0; k < n; ++k) area += cross(l.points[k], l.points[(k + 1) % n]);
+    if (area <= 0) continue;  // counter-clockwise only, so the loop keeps its numbering
+    std::string expect;
+    for (int i = 0; i < n && expect.empty(); ++i)
+      for (int j = i + 1; j < n && expect.empty(); ++j) {
+        const Vec2 &a = l.points[i], &b = l.points[(i + 1) % n], &c = l.points[j], &d = l.points[(j + 1) % n];
+        const bool neighbours = j == i + 1 || (i == 0 && j == n - 1);
+        if (neighbours ? segmentsCross(a, b, c, d) : segmentsIntersect(a, b, c, d))
+          expect = "segment " + std::to_string(i) + " intersects outer loop 0 segment " + std::to_string(j) + " ";
+      }
+    const std::string got = errorOf([&] { Domain dom(l); });
+    if (expect.empty()) {
+      EXPECT_EQ(got, "") << "trial " << trial;
+    } else {
+      ++crossing;
+      EXPECT_NE(got.find(expect), std::string::npos)
+          << "trial " << trial << ": expected '" << expect << "', got '" << got << "'";
+    }
+  }
+  EXPECT_GT(crossing, 50);
+}
+
+// Thousands of segments on one vertical side (a boundary taken from a graded mesh) are checked,
+// and a spike that touches the opposite side is found.
+TEST(Domain, ValidationOfADenseVerticalSide) {
+  BoundaryLoop l;
+  const int m = 4000;
+  l.points = {{0, 0}, {1, 0}};
+  for (int k = 1; k < m; ++k) l.points.push_back({1, double(k) / m});
+  l.points.push_back({1, 1});
+  l.points.push_back({0, 1});
+  for (int k = m - 1; k > 0; --k) l.points.push_back({0, double(k) / m});
+  EXPECT_EQ(errorOf([&] { Domain d(l); }), "");
+  l.points[2 + m / 2].x() = -0.5;  // a spike from the right side through the left one
+  EXPECT_NE(errorOf([&] { Domain d(l); }).find("intersects"), std::string::npos);
 }

@@ -3,6 +3,7 @@
 
 #include "ablmg/core/error.hpp"
 #include "ablmg/fem/structured_mesh.hpp"
+#include "ablmg/fem/test_problems.hpp"
 
 #include <gtest/gtest.h>
 
@@ -96,4 +97,20 @@ TEST(ErrorNorms, AnExactSolutionThrowingInTheParallelLoopGivesItsOwnError) {
   EXPECT_EQ(message(1), two);
   ex.threadSafe = false;
   EXPECT_EQ(message(2), two);
+}
+
+TEST(ErrorNorms, ValueAndGradientInOneCallGiveTheSameNorms) {
+  // The corner solution's combined u and ∇u (one r and θ per point) against the two apart.
+  const TestProblem p = makeProblem("lshape");
+  const Mesh2 mesh = structuredMesh(p.domain, 10, 10, 0.2, 3);
+  Eigen::VectorXd uh(mesh.numVertices());
+  for (int v = 0; v < mesh.numVertices(); ++v) uh[v] = 0.9 * p.u(mesh.vertices[v].x(), mesh.vertices[v].y());
+  ExactSolution apart = p.exact();
+  ASSERT_TRUE(bool(apart.valueAndGrad));
+  apart.valueAndGrad = {};
+  const ErrorReport a = computeErrors(mesh, uh, apart), b = computeErrors(mesh, uh, p.exact());
+  EXPECT_GT(a.h1, 0);
+  EXPECT_EQ(a.l2, b.l2);
+  EXPECT_EQ(a.h1, b.h1);
+  EXPECT_EQ(a.elementH1, b.elementH1);
 }
