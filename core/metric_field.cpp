@@ -161,12 +161,13 @@ void BackgroundMetricField::gridSqrtDeterminants(const Vec2& lo, const Vec2& d, 
   ABLMG_ASSERT(mask.size() == std::size_t(gx) * std::size_t(gy) && out.size() == mask.size(), "");
   ABLMG_ASSERT(d.x() > 0 && d.y() > 0, "");
   // The triangles bucketed by bands of kBand grid rows (in triangle order within a band), from
-  // the rows of their bounding boxes' cell centres (one more on each side against rounding).
+  // the rows of the cell centres in their bounding boxes (a centre that rounding puts just out
+  // of a box lies on an edge or a vertex, so also in a neighbour, or is located below).
   constexpr int kBand = 16;
   const int bands = (gy + kBand - 1) / kBand, nt = mesh_.numTriangles();
   const auto cellRange = [](double a, double b, double o, double h, int g) {
-    const int i0 = std::max(0, int(std::floor((a - o) / h - 0.5)));
-    const int i1 = std::min(g - 1, int(std::ceil((b - o) / h - 0.5)));
+    const int i0 = std::max(0, int(std::ceil((a - o) / h - 0.5)));
+    const int i1 = std::min(g - 1, int(std::floor((b - o) / h - 0.5)));
     return std::pair{i0, i1};
   };
   std::vector<int> first(std::size_t(bands) + 1, 0), ids;

@@ -263,18 +263,9 @@ int PointLocator::acrossTheBoundary(const Vec2& p, int stopped) const {
   }
   for (const int t : cand)
     if (contains(t, p)) return t;
+  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
   int best = stopped;
   double bestD = (clampedPoint(clamped(stopped, p)) - p).squaredNorm();
-  // p beyond the stopped triangle's boundary by rounding only (a boundary node computed on a
-  // boundary segment: most of the queries that come here): no other stop can be nearer but at
-  // the same point (a shared vertex, the same weights). The walks below cost 10⁴ instructions.
-  {
-    const auto& tr = mesh_.triangles[std::size_t(stopped)];
-    const Vec2 &a = mesh_.vertices[tr[0]], &b = mesh_.vertices[tr[1]], &c = mesh_.vertices[tr[2]];
-    const double h2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-    if (bestD <= 1e-24 * h2) return stopped;
-  }
-  const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
   const int stride = std::max(1, int(cand.size()) / kWalks);
   for (std::size_t k = 0; k < cand.size(); k += std::size_t(stride)) {
     bool atBoundary = false;
