@@ -99,9 +99,11 @@ void requireNoCrossings(const Loops& L, const std::string& name) {
 }
 
 double signedArea(const Loops& L, const std::vector<int>& loop) {
+  if (loop.empty()) return 0;
+  const Vec2 o = L.points[std::size_t(loop[0])];  // about a loop point: exact sign far from the origin
   double a = 0;
   for (std::size_t k = 0; k < loop.size(); ++k)
-    a += cross(L.points[std::size_t(loop[k])], L.points[std::size_t(loop[(k + 1) % loop.size()])]);
+    a += cross(L.points[std::size_t(loop[k])] - o, L.points[std::size_t(loop[(k + 1) % loop.size()])] - o);
   return 0.5 * a;
 }
 

@@ -13,10 +13,19 @@ namespace ablmg {
 namespace {
 
 double loopSignedArea(const BoundaryLoop& loop) {
-  double a = 0;
+  // The shoelace sum about the origin cancels catastrophically far from it (a unit square at
+  // x = 10⁹: products of 10¹⁸, area 0); the sum about the loop's first point does not. The
+  // latter is taken only where the two differ beyond round-off, so that domains near the
+  // origin keep their bits (and their meshes).
+  double a = 0, b = 0;
   const std::size_t n = loop.points.size();
-  for (std::size_t k = 0; k < n; ++k) a += cross(loop.points[k], loop.points[(k + 1) % n]);
-  return 0.5 * a;
+  if (n == 0) return 0;
+  const Vec2 o = loop.points[0];
+  for (std::size_t k = 0; k < n; ++k) {
+    a += cross(loop.points[k], loop.points[(k + 1) % n]);
+    b += cross(loop.points[k] - o, loop.points[(k + 1) % n] - o);
+  }
+  return 0.5 * (std::abs(a - b) > 1e-9 * std::abs(b) ? b : a);
 }
 
 void reverseLoop(BoundaryLoop& loop) {

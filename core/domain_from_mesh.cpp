@@ -92,7 +92,8 @@ Domain domainFromMeshBoundary(const Mesh2& mesh, const std::string& name) {
       ABLMG_REQUIRE(next[sz(v)] >= 0, name << ": boundary is not closed at vertex " << v + 1);
       loop.points.push_back(mesh.vertices[v]);
       loop.tags.push_back(nextRef[sz(v)]);
-      area += 0.5 * cross(mesh.vertices[v], mesh.vertices[next[sz(v)]]);
+      // about the loop's first vertex: the sum about the origin cancels far from it (10⁹)
+      area += 0.5 * cross(mesh.vertices[v] - mesh.vertices[start], mesh.vertices[next[sz(v)]] - mesh.vertices[start]);
       v = next[sz(v)];
       ABLMG_REQUIRE(v == start || !used[sz(v)], name << ": boundary loops touch at vertex " << v + 1);
     } while (v != start);
@@ -232,7 +233,8 @@ MeshSubdomains subdomainsFromMesh(const Mesh2& mesh, const std::string& name) {
         itf.push_back(nextInterface[std::size_t(v)]);
         const int w = next[std::size_t(v)];
         ABLMG_REQUIRE(w >= 0, name << ": the boundary of subdomain " << r.ref << " is not closed at vertex " << v + 1);
-        area += 0.5 * cross(mesh.vertices[std::size_t(v)], mesh.vertices[std::size_t(w)]);
+        const Vec2& o = mesh.vertices[std::size_t(s)];  // as above: about the loop's first vertex
+        area += 0.5 * cross(mesh.vertices[std::size_t(v)] - o, mesh.vertices[std::size_t(w)] - o);
         v = w;
       } while (v != s);
       r.loops.push_back(std::move(loop));

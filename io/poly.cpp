@@ -15,8 +15,9 @@ struct Segment {
 };
 
 double signedArea(const std::vector<Vec2>& p) {
-  double s = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) s += cross(p[i], p[(i + 1) % p.size()]);
+  if (p.empty()) return 0;
+  double s = 0;  // about p[0]: exact sign far from the origin
+  for (std::size_t i = 0; i < p.size(); ++i) s += cross(p[i] - p[0], p[(i + 1) % p.size()] - p[0]);
   return 0.5 * s;
 }
 

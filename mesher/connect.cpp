@@ -662,7 +662,8 @@ double areaToCover(const PlacementResult& placement, const Domain& domain) {
   if (!smooth) return domain.area();
   double area = 0;
   const auto& pos = placement.nodes.positions;
-  for (const auto& e : placement.boundaryEdges) area += 0.5 * cross(pos[e.a], pos[e.b]);
+  const Vec2 o = placement.boundaryEdges.empty() ? Vec2(0, 0) : pos[placement.boundaryEdges[0].a];
+  for (const auto& e : placement.boundaryEdges) area += 0.5 * cross(pos[e.a] - o, pos[e.b] - o);  // exact far away
   return area;
 }
 

@@ -17,7 +17,9 @@ double expectedArea(const Domain& domain, const Mesh2& mesh) {
   for (const auto& loop : domain.loops()) anySmooth = anySmooth || loop.smooth;
   if (!anySmooth) return domain.area();
   double a = 0;
-  for (const auto& e : mesh.boundaryEdges) a += 0.5 * cross(mesh.vertices[e.a], mesh.vertices[e.b]);
+  const Vec2 o = mesh.boundaryEdges.empty() ? Vec2(0, 0) : mesh.vertices[mesh.boundaryEdges[0].a];
+  for (const auto& e : mesh.boundaryEdges)
+    a += 0.5 * cross(mesh.vertices[e.a] - o, mesh.vertices[e.b] - o);  // about a boundary point: exact far away
   return a;
 }
 

@@ -47,8 +47,10 @@ BoundaryLoop toBoundaryLoop(const Loop& l) {
 }
 
 double signedArea(const Loop& l) {
+  if (l.pts.empty()) return 0;
+  const Vec2 o = l.pts[0].p;  // about a loop point: exact sign far from the origin
   double a = 0;
-  for (std::size_t k = 0; k < l.pts.size(); ++k) a += cross(l.pts[k].p, l.pts[(k + 1) % l.pts.size()].p);
+  for (std::size_t k = 0; k < l.pts.size(); ++k) a += cross(l.pts[k].p - o, l.pts[(k + 1) % l.pts.size()].p - o);
   return 0.5 * a;
 }
 
@@ -310,8 +312,9 @@ MeshResult meshSlitDomain(const Domain& domain, const MetricField& metric, const
   double area = domain.area();
   if (anySmooth) {
     area = 0;
+    const Vec2 o = m.boundaryEdges.empty() ? Vec2(0, 0) : m.vertices[std::size_t(m.boundaryEdges[0].a)];
     for (const auto& e : m.boundaryEdges)
-      area += 0.5 * cross(m.vertices[std::size_t(e.a)], m.vertices[std::size_t(e.b)]);
+      area += 0.5 * cross(m.vertices[std::size_t(e.a)] - o, m.vertices[std::size_t(e.b)] - o);
   }
   m.requireValid("meshDomain (slits glued)", area, 1e-9);
   return out;

@@ -41,3 +41,11 @@ set_tests_properties(cli_adapt_uniform_off_grid PROPERTIES LABELS cli PASS_REGUL
 file(WRITE ${_rdir}/gmsh.msh "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n")
 ablmg_cli_failure(remesh_gmsh_msh "gmsh.msh:1: expected MeshVersionFormatted, got '.meshformat' \\(a gmsh .msh file: write medit with gmsh -format mesh\\)"
                   remesh -in ${_rdir}/gmsh.msh -hsiz 0.1 -out ${_rdir}/gmsh_msh.mesh)
+# A multi-material medit mesh 10⁹ from the origin: its loops' areas (which loop is outer, the
+# area to cover) are summed about a loop point; about the origin they lost every digit.
+file(WRITE ${_rdir}/far.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n8\n"
+     "1e9 1e9 0\n1000000002 1e9 0\n1000000002 1000000001 0\n1e9 1000000001 0\n1000000001 1e9 0\n1000000001 1000000001 0\n"
+     "1000000000.5 1000000000.5 0\n1000000001.5 1000000000.5 0\n"
+     "Triangles\n8\n1 5 7 1\n5 6 7 1\n6 4 7 1\n4 1 7 1\n5 2 8 2\n2 3 8 2\n3 6 8 2\n6 5 8 2\nEnd\n")
+add_test(NAME cli.remesh_far_from_the_origin COMMAND ablmg remesh -in ${_rdir}/far.mesh -hsiz 0.1 -out ${_rdir}/far.o.mesh -v 0)
+set_tests_properties(cli.remesh_far_from_the_origin PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "8 -> [0-9]+ vertices")

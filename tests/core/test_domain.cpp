@@ -37,6 +37,17 @@ TEST(Domain, AreaWithHoleAndOrientation) {
   EXPECT_NEAR(d.distanceToBoundary({0.5, 2.0}), 0.5, 1e-15);
 }
 
+// Far from the origin the shoelace sum about (0, 0) cancels (a unit square at 10⁹ had area 0
+// and was refused; at 10¹² its area was 1.3e8): the area and the orientation are exact there.
+TEST(Domain, AreaFarFromTheOrigin) {
+  for (double o : {1e5, 1e9, 1e12}) {
+    const Domain d(square(o, o, 1, /*ccw=*/false), {square(o + 0.25, o + 0.25, 0.5)});
+    EXPECT_DOUBLE_EQ(d.area(), 0.75) << "offset " << o;
+    EXPECT_TRUE(d.contains({o + 0.1, o + 0.1}));
+    EXPECT_FALSE(d.contains({o + 0.5, o + 0.5}));
+  }
+}
+
 TEST(Domain, TagsFollowReorientation) {
   BoundaryLoop l = square(0, 0, 1, false);  // clockwise: (0,0) (0,1) (1,1) (1,0)
   l.tags = {3, 2, 1, 4};                    // top, right, bottom, left
