@@ -8,7 +8,7 @@
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
 //               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
-//               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--out-dir DIR]
+//               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--png on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
@@ -26,7 +26,7 @@
 // cycle), DIR/convergence.json (options, rows, fitted rates), DIR/cycle_K.vtu (mesh, u_h,
 // exact u, nodal error, the metric the mesh was built for, per-element errors),
 // DIR/convergence.png (errors vs N, log-log, slopes −1/2 and −1, and uniform structured meshes
-// of the same N when --uniform on) and DIR/final_mesh.png; with --medit on also
+// of the same N when --uniform on) and DIR/final_mesh.png (not with --png off); with --medit on also
 // DIR/cycle_K.mesh and DIR/cycle_K_metric.sol (the metric computed on mesh K for mesh K+1,
 // tensor m11 m12 m22). Prints the resolved options, one `Cycle k:` line per cycle, the rates.
 #include "ablmg/adapt/adaptive_loop.hpp"
@@ -71,6 +71,7 @@ struct Args {
   adapt::ScheduleOptions schedule;
   std::string outDir = "adapt_out";
   bool uniform = true, vtu = true, medit = false;
+  bool png = true;            ///< --png off: no convergence.png and final_mesh.png (runs that are timed or batched)
   int verbosity = 1;          ///< -v N: 0 = no progress line
   bool printOptions = false;  ///< --print-options: print the options in effect and exit
   /// --reference-vertices N: errors against the loop's own solution at N vertices (problems
@@ -231,7 +232,7 @@ bool parseLoopOption(ArgCursor& c, Args& a) {
   return true;
 }
 
-/// The outputs: --uniform --vtu --medit -v --out-dir --print-options --reference-vertices.
+/// The outputs: --uniform --vtu --medit --png -v --out-dir --print-options --reference-vertices.
 /// False if `c.key()` is none of them.
 bool parseOutputOption(ArgCursor& c, Args& a) {
   const std::string& key = c.key();
@@ -241,6 +242,8 @@ bool parseOutputOption(ArgCursor& c, Args& a) {
     a.vtu = parseOnOff(c.value(), "adapt: --vtu");
   } else if (key == "--medit") {
     a.medit = parseOnOff(c.value(), "adapt: --medit");
+  } else if (key == "--png") {
+    a.png = parseOnOff(c.value(), "adapt: --png");
   } else if (key == "-v") {
     a.verbosity = int(parseInteger(c.value(), "adapt: -v", 0, 10));
   } else if (key == "--out-dir") {
@@ -268,16 +271,16 @@ Args parseArgs(const std::vector<std::string>& args) {
       ABLMG_REQUIRE(a.config.empty(), "adapt: more than one config file ('" << a.config << "', '" << key << "')");
       a.config = key;
     } else {
-      ABLMG_REQUIRE(false,
-                    "adapt: unknown argument '"
-                        << key
-                        << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
-                           "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                           "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
-                           "--dual-share --dual-goal --max-aniso --seed "
-                           "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
-                           "--repeat-min-change "
-                           "--plateau-gain --uniform --vtu --medit --reference-vertices --out-dir --print-options)");
+      ABLMG_REQUIRE(
+          false, "adapt: unknown argument '"
+                     << key
+                     << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
+                        "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                        "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
+                        "--dual-share --dual-goal --max-aniso --seed "
+                        "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
+                        "--repeat-min-change "
+                        "--plateau-gain --uniform --vtu --medit --png --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -431,7 +434,8 @@ without "exact"). The final mesh's interfaces are checked to lie on chains of it
 --vertices N: from N0 (default 400) to N by the factor G (default 2), P passes (default 3) at
 each size below N1 (default 10000); --target-vertices: cycle k targets N_k vertices (the last N
 repeats when K exceeds the list). Writes DIR/convergence.csv/.json/.png,
-DIR/final_mesh.png, DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh + cycle_K_metric.sol (--medit).
+DIR/final_mesh.png (--png, default on), DIR/cycle_K.vtu (--vtu), DIR/cycle_K.mesh +
+cycle_K_metric.sol (--medit).
 Metric flags: docs/config.md ("ablmg adapt"); formulas: adapt/metric_from_hessian.hpp.
 --stop-l2 E, --stop-h1 E: stop after the first cycle whose error (against the exact solution)
 is at most E; N (--vertices) is then the most the run may use. With a stop, after each size
@@ -788,9 +792,9 @@ int runAdapt(const std::vector<std::string>& argv) {
   if (a.uniform && exact) compareWithUniform(problem, report, j, curves);
   io::writeFileAtomically((fs::path(a.outDir) / "convergence.json").string(),
                           [&](std::ostream& os) { os << j.dump(2) << "\n"; });
-  const bool plottable = writePictures(a, problem, curves, finalMesh);
+  const bool plottable = a.png && writePictures(a, problem, curves, finalMesh);
   std::cout << "Wrote " << a.outDir << "/convergence.csv, convergence.json" << (plottable ? ", convergence.png" : "")
-            << ", final_mesh.png" << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
+            << (a.png ? ", final_mesh.png" : "") << (a.vtu ? ", cycle_*.vtu" : "") << "\n";
   return 0;
 }
 

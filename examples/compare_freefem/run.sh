@@ -17,7 +17,7 @@
 #    adaptmesh per cycle, errors against the exact solution) -> freefem.csv, freefem_final.mesh;
 # 2. ablmg adapt --problem ... --vertices N (N = FreeFem's final vertex count; the default
 #    schedule) -> ablmg/ (convergence.csv, cycle_K.mesh);
-# 3. time to accuracy: ablmg adapt --vertices 2N --stop-h1 E (E = FreeFem's final H1 error), wall;
+# 3. time to accuracy: ablmg adapt --vertices 2N --stop-h1 E --png off (E = FreeFem's final H1 error), wall;
 # 4. compare_freefem_plot -> compare.md (tables), summary.md (one row), compare.png.
 # Then docs/benchmarks.md's section compare_freefem is rebuilt from every
 # OUT/*/compare.md present (each says when and at which commit it was measured) and the plots
@@ -102,8 +102,9 @@ for name in $problem; do
   echo "== $name: ablmg adapt $abargs --vertices $((2 * nff)) --stop-h1 $h1ff (time to FreeFem's final H1 error)"
   t4=$(now)
   # shellcheck disable=SC2086
+  # Like FreeFem++'s loop (run -nw), the timed run draws no pictures.
   "$build/bin/ablmg" adapt $abargs --vertices $((2 * nff)) --stop-h1 "$h1ff" "${extra[@]}" --uniform off --vtu off \
-    --out-dir "$dir/reach" > "$dir/reach.log"
+    --png off --out-dir "$dir/reach" > "$dir/reach.log"
   t5=$(now)
   reached=$(awk -F, -v e="$h1ff" 'NR > 1 && $5 <= e { r = 1 } END { print r ? "yes" : "no" }' "$dir/reach/convergence.csv")
   reachWall=$(awk "BEGIN { print $t5 - $t4 }")

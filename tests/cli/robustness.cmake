@@ -49,3 +49,16 @@ file(WRITE ${_rdir}/far.mesh "MeshVersionFormatted 2\nDimension 2\nVertices\n8\n
      "Triangles\n8\n1 5 7 1\n5 6 7 1\n6 4 7 1\n4 1 7 1\n5 2 8 2\n2 3 8 2\n3 6 8 2\n6 5 8 2\nEnd\n")
 add_test(NAME cli.remesh_far_from_the_origin COMMAND ablmg remesh -in ${_rdir}/far.mesh -hsiz 0.1 -out ${_rdir}/far.o.mesh -v 0)
 set_tests_properties(cli.remesh_far_from_the_origin PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "8 -> [0-9]+ vertices")
+# --png off (timed and batch runs): the run writes its tables and no picture.
+file(WRITE ${_rdir}/check_png_off.cmake [=[
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${BIN} adapt --problem peak --vertices 600 --uniform off --vtu off --png off --out-dir ${OUT}
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+file(GLOB pictures ${OUT}/*.png)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${OUT}/convergence.csv OR pictures)
+  message(FATAL_ERROR "adapt --png off: exit ${rc}, pictures '${pictures}'")
+endif()
+]=])
+add_test(NAME cli_adapt_png_off_writes_no_picture
+         COMMAND ${CMAKE_COMMAND} -DBIN=$<TARGET_FILE:ablmg> -DOUT=${_rdir}/png_off -P ${_rdir}/check_png_off.cmake)
+set_tests_properties(cli_adapt_png_off_writes_no_picture PROPERTIES LABELS cli)
