@@ -31,6 +31,16 @@ BubbleSystem interiorSystem(const DomainGeometry& geo, const std::vector<Vec2>& 
   return sys;
 }
 
+/// A 15 × 15 hexagonal patch of spacing 0.1 (hexPatch) inside the rectangle [−1, 3]², in the
+/// isotropic metric of that size: the set-up of the vacancy and steering tests.
+struct HexPatch {
+  Domain d = Domain::rectangle(-1, -1, 3, 3);
+  DomainGeometry geo{d};
+  ConstantMetricField field{Metric2::isotropic(0.1)};
+  std::vector<Vec2> x;
+  std::vector<Metric2> m;
+  HexPatch() { hexPatch(0.1, 15, x, m); }
+};
 }  // namespace
 
 TEST(Population, OverlapRatioIsSixInsideALatticeAndTwoOnALine) {
@@ -56,12 +66,11 @@ TEST(Population, OverlapRatioIsSixInsideALatticeAndTwoOnALine) {
 }
 
 TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
-  const Domain d = Domain::rectangle(-1, -1, 3, 3);
-  const DomainGeometry geo(d);
-  ConstantMetricField field(Metric2::isotropic(0.1));
-  std::vector<Vec2> x;
-  std::vector<Metric2> m;
-  hexPatch(0.1, 15, x, m);
+  HexPatch patch;
+  const DomainGeometry& geo = patch.geo;
+  const ConstantMetricField& field = patch.field;
+  std::vector<Vec2>& x = patch.x;
+  std::vector<Metric2>& m = patch.m;
   // vacancy at lattice node (7,7): drop it; interstitial: a node inside the triangle (3,3),(4,3),(3,4)
   const Vec2 hole = x[7 * 15 + 7];
   x.erase(x.begin() + 7 * 15 + 7);
@@ -92,12 +101,10 @@ TEST(Population, FillsAVacancyAndRemovesAnInterstitial) {
 // steering thresholds fill it; once steerUp is cleared (placeNodes does that when the count
 // stops growing) they do not.
 TEST(Population, SteeringFillsASmallHoleOnlyBelowTheTarget) {
-  const Domain d = Domain::rectangle(-1, -1, 3, 3);
-  const DomainGeometry geo(d);
-  ConstantMetricField field(Metric2::isotropic(0.1));
-  std::vector<Vec2> x;
-  std::vector<Metric2> m;
-  hexPatch(0.1, 15, x, m);
+  HexPatch patch;
+  const DomainGeometry& geo = patch.geo;
+  const ConstantMetricField& field = patch.field;
+  std::vector<Vec2>& x = patch.x;
   const Vec2 hole = x[7 * 15 + 7];
   x.erase(x.begin() + 7 * 15 + 7);
   for (auto& p : x)
@@ -122,12 +129,10 @@ TEST(Population, SteeringFillsASmallHoleOnlyBelowTheTarget) {
 // Past 1.5× the aim no hole is filled: in a metric no packing fits, eq. (9) finds holes
 // everywhere, and its insertions had grown the count 4–9× past the target.
 TEST(Population, NoInsertionFarAboveTheTarget) {
-  const Domain d = Domain::rectangle(-1, -1, 3, 3);
-  const DomainGeometry geo(d);
-  ConstantMetricField field(Metric2::isotropic(0.1));
-  std::vector<Vec2> x;
-  std::vector<Metric2> m;
-  hexPatch(0.1, 15, x, m);
+  HexPatch patch;
+  const DomainGeometry& geo = patch.geo;
+  const ConstantMetricField& field = patch.field;
+  std::vector<Vec2>& x = patch.x;
   x.erase(x.begin() + 7 * 15 + 7);  // a vacancy: filled without a target (FillsAVacancy...)
   auto inserted = [&](long target) {
     BubbleSystem sys = interiorSystem(geo, x, field);
