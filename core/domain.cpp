@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -298,9 +299,16 @@ void forOverlappingPairs(const std::vector<Segment>& segs, Visit visit) {
   }
   // Fewer cells when long segments would cover too many of them (memory stays O(n)).
   for (int g = std::clamp(int(std::ceil(std::sqrt(double(n)))), 1, 2048);; g = std::max(1, g / 2)) {
-    const double w = hi.x() > lo.x() ? (hi.x() - lo.x()) / g : 1, h = hi.y() > lo.y() ? (hi.y() - lo.y()) / g : 1;
+    // A cell size that underflows (a subnormal extent) or overflows gives one column or row; the
+    // cell index is clamped as a double, so no NaN or out-of-range value is converted to int.
+    const auto cellSize = [&](double extent) {
+      const double size = extent / g;
+      return size > 0 && std::isfinite(size) ? size : std::numeric_limits<double>::infinity();
+    };
+    const double w = cellSize(hi.x() - lo.x()), h = cellSize(hi.y() - lo.y());
     const auto cell = [&](double v, double origin, double size) {
-      return std::clamp(int(std::floor((v - origin) / size)), 0, g - 1);
+      const double t = std::floor((v - origin) / size);
+      return t >= 1 ? int(std::min(t, double(g - 1))) : 0;  // NaN (an overflowed v − origin over an infinite size) → 0
     };
     std::vector<std::array<int, 4>> range(n);  // cx0, cy0, cx1, cy1
     std::size_t entries = 0;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -130,4 +131,15 @@ TEST(Domain, ValidationOfADenseVerticalSide) {
   EXPECT_EQ(errorOf([&] { Domain d(l); }), "");
   l.points[2 + m / 2].x() = -0.5;  // a spike from the right side through the left one
   EXPECT_NE(errorOf([&] { Domain d(l); }).find("intersects"), std::string::npos);
+}
+
+// Extents that underflow or overflow the crossing check's cell size (a subnormal square, a square
+// of side 2·10³⁰⁸): an error or a valid domain, never a NaN converted to a cell index (UBSan).
+TEST(Domain, ValidationOfExtremeExtents) {
+  const double tiny = std::numeric_limits<double>::denorm_min(), huge = 1e308;
+  for (const double s : {tiny, 4 * tiny, huge}) {
+    BoundaryLoop l;
+    l.points = {{-s, -s}, {s, -s}, {s, s}, {-s, s}, {0, 0.5 * s}};  // the last point folds back inside
+    EXPECT_NO_THROW(errorOf([&] { Domain d(l); })) << s;
+  }
 }
