@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <utility>
 
 namespace ablmg::adapt {
 namespace {
@@ -205,16 +206,25 @@ std::vector<Vec2> recoverGradients(const Mesh2& mesh, std::span<const double> u)
 }
 
 namespace {
-std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) {
+/// The least-squares Hessians of each field (one patch and QR per vertex for all of them).
+template <std::size_t K>
+std::array<std::vector<Hessian2>, K> lsqHessians(const Mesh2& mesh, const std::span<const double> (&fields)[K]) {
   const auto g = detail::vertexGraph(mesh);
   const int n = mesh.numVertices();
-  std::vector<Hessian2> out(n);
+  std::array<std::vector<Hessian2>, K> out;
+  for (auto& h : out) h.resize(std::size_t(n));
   const auto fit = [&](int v, std::vector<int>& patch, std::vector<int>& mark) {
-    const auto a = detail::patchQuadraticFit(mesh, g, u, v, patch, mark);
-    out[v] << 2 * a[3], a[4], a[4], 2 * a[5];
+    Eigen::Matrix<double, 6, 1> a[K];
+    detail::patchQuadraticFits(mesh, g, fields, v, patch, mark, a);
+    for (std::size_t k = 0; k < K; ++k) out[k][std::size_t(v)] << 2 * a[k][3], a[k][4], a[k][4], 2 * a[k][5];
   };
   detail::forEachVertex(n, fit);
   return out;
+}
+
+std::vector<Hessian2> lsqHessians(const Mesh2& mesh, std::span<const double> u) {
+  const std::span<const double> fields[1] = {u};
+  return std::move(lsqHessians(mesh, fields)[0]);
 }
 }  // namespace
 
@@ -226,17 +236,8 @@ std::array<std::vector<Hessian2>, 2> recoverHessians(const Mesh2& mesh, std::spa
     return {recoverHessians(mesh, u, method), recoverHessians(mesh, z, method)};
   detail::checkField(mesh, u, "recoverHessians");
   detail::checkField(mesh, z, "recoverHessians");
-  const auto g = detail::vertexGraph(mesh);
-  const int n = mesh.numVertices();
-  std::array<std::vector<Hessian2>, 2> out{std::vector<Hessian2>(n), std::vector<Hessian2>(n)};
   const std::span<const double> fields[2] = {u, z};
-  const auto fit = [&](int v, std::vector<int>& patch, std::vector<int>& mark) {
-    Eigen::Matrix<double, 6, 1> a[2];
-    detail::patchQuadraticFits(mesh, g, fields, v, patch, mark, a);
-    for (int k = 0; k < 2; ++k) out[std::size_t(k)][std::size_t(v)] << 2 * a[k][3], a[k][4], a[k][4], 2 * a[k][5];
-  };
-  detail::forEachVertex(n, fit);
-  return out;
+  return lsqHessians(mesh, fields);
 }
 
 namespace detail {
