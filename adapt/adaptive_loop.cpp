@@ -7,6 +7,7 @@
 #include "ablmg/core/stopwatch.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -104,8 +105,10 @@ bool hasDual(const fem::PoissonProblem& problem) { return !problem.dirichlet.emp
 /// metric: the H1 weight's density factor, and when the dual is used (dualWeight, dualShare) the
 /// unit-load dual solved (its wall seconds in `tDual`) and, with dualShare, recovered with u in
 /// one pass (recoverHessians of two fields: the patches and their QR shared, the same Hessians).
+/// The dual has u's matrix: `factor` (u's factorisation) solves it without a second one.
 std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
-                                      bool withMetric, const AdaptOptions& options, DualCorrection& d, double& tDual) {
+                                      bool withMetric, const AdaptOptions& options, DualCorrection& d, double& tDual,
+                                      std::unique_ptr<fem::Factorisation>& factor) {
   const std::span<const double> uv(u.data(), std::size_t(u.size()));
   tDual = 0;
   if (!withMetric) return recoverHessians(mesh, uv, options.hessian);
@@ -115,7 +118,7 @@ std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& 
     return recoverHessians(mesh, uv, options.hessian);
   }
   const Stopwatch watch;
-  const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
+  const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve, factor);
   tDual = watch.seconds();
   const std::span<const double> zv(z.u.data(), std::size_t(z.u.size()));
   if (dualWeight > 0 || options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, zv, dualWeight, options.h1Weight);
@@ -330,7 +333,8 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
 
     reportStage(options, "solve", s, cycles, row.vertices);
     watch.restart();
-    const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
+    std::unique_ptr<fem::Factorisation> factor;  // kept for the dual (recoverWithDual)
+    const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve, factor);
     row.tSolve = watch.seconds();
     row.tAssembly = sol.stats.assemblySeconds;
     row.tOrdering = sol.stats.orderingSeconds;
@@ -357,7 +361,8 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     watch.restart();
     DualCorrection dual;
     double tDual = 0;
-    const auto hessians = recoverWithDual(current.mesh, sol.u, poisson, !last, options, dual, tDual);
+    const auto hessians = recoverWithDual(current.mesh, sol.u, poisson, !last, options, dual, tDual, factor);
+    factor.reset();
     row.tRecover = watch.seconds() - tDual;
     row.l2InterpEstimate = estimateInterpolationError(current.mesh, hessians).l2;
     if (!last) {
