@@ -3,6 +3,7 @@
 #include "ablmg/adapt/adaptive_loop.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/mesher/quality.hpp"
 
@@ -38,6 +39,22 @@ AdaptedMetric adaptMetric(const Mesh2& mesh, std::span<const double> u, double t
   r.secondsRecover = secondsRecover;
   return r;
 }
+
+namespace {
+/// m ← boundMetric(s m) at every vertex; each vertex its own, so the same bits on any team size.
+void rescaleAndBound(std::vector<Metric2>& metric, double s, const MetricOptions& mo) {
+  constexpr long kMinParallelVertices = 4096;  // below: one thread (a team's wake-up costs more)
+  const long n = long(metric.size());
+  ParallelFailure failure;
+#pragma omp parallel for schedule(static) if (n >= kMinParallelVertices)
+  for (long v = 0; v < n; ++v)
+    failure.run(v, [&] {
+      auto& m = metric[std::size_t(v)];
+      m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
+    });
+  failure.rethrow();
+}
+}  // namespace
 
 AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> hessians, double targetVertices,
                                   const AdaptOptions& options, std::span<const double> densityScale,
@@ -93,12 +110,12 @@ AdaptedMetric metricFromRecovered(const Mesh2& mesh, std::span<const Hessian2> h
     // Gradation only refines: restore the complexity by a uniform rescale (shape kept).
     const double c = metricComplexity(mesh, metric), target = complexityForVertices(targetVertices);
     const double s = target / c;
-    for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
+    rescaleAndBound(metric, s, mo);
   }
   if (!densityScale.empty()) {  // √det(s M) = s √det M: s scales the density; rescaled to N
     for (std::size_t v = 0; v < metric.size(); ++v) metric[v] = densityScale[v] * metric[v];
     const double s = complexityForVertices(targetVertices) / metricComplexity(mesh, metric);
-    for (auto& m : metric) m = boundMetric(s * m, mo.hmin, mo.hmax, mo.maxAnisotropy);
+    rescaleAndBound(metric, s, mo);
   }
   // Singular corners last, after the rescales, then graded again: their few extra vertices are not
   // counted, since the complexity integral (per triangle, area × the mean of the vertices' √det M)

@@ -36,6 +36,8 @@ void validate(const AdaptOptions& o) {
                     << o.repeatMinChange << " and " << o.stopRepeatMinChange << ")");
   ABLMG_REQUIRE(std::isfinite(o.stopSizeAim) && o.stopSizeAim <= 1,
                 "adapt options: stopSizeAim must be <= 1 (<= 0: off), got " << o.stopSizeAim);
+  ABLMG_REQUIRE(std::isfinite(o.stopJump) && o.stopJump >= 0 && o.stopJump <= 100,
+                "adapt options: stopJump must be in [0, 100] (<= 1: off), got " << o.stopJump);
   ABLMG_REQUIRE(o.errorDegree >= 1 && o.errorDegree <= 8,
                 "adapt options: errorDegree must be in 1..8 (got " << o.errorDegree << ")");
   MetricOptions m = o.metric;
@@ -247,11 +249,24 @@ void aimAtStop(const AdaptOptions& options, const std::vector<CycleReport>& cycl
     predicted = true;
   }
   size = std::round(std::max(size, 1.1 * double(row.vertices)));
-  if (!predicted || !(size < targets[next])) return;
+  if (!predicted) return;
   const double old = targets[next];
   std::size_t j = next;
-  for (; j < targets.size() && targets[j] == old; ++j) targets[j] = size;
-  if (j == targets.size()) targets.push_back(old);
+  if (size < old) {
+    for (; j < targets.size() && targets[j] == old; ++j) targets[j] = size;
+    if (j == targets.size()) targets.push_back(old);
+    return;
+  }
+  // Beyond the next size: jump there when it is within stopJump × N and a scheduled size at
+  // least as large follows (kept for a miss); the skipped sizes go, their first one's passes
+  // are run at the new size.
+  if (!(size <= options.stopJump * double(row.vertices))) return;
+  while (j < targets.size() && targets[j] < size) ++j;
+  if (j == targets.size()) return;
+  std::size_t passes = 0;
+  while (next + passes < j && targets[next + passes] == old) ++passes;
+  targets.erase(targets.begin() + std::ptrdiff_t(next), targets.begin() + std::ptrdiff_t(j));
+  targets.insert(targets.begin() + std::ptrdiff_t(next), passes, size);
 }
 
 /// The convergence curve (the last cycle of each target size) and its log-log rates over the

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace ablmg::adapt {
 
@@ -34,13 +35,28 @@ GradationStats limitGradation(const Mesh2& mesh, std::vector<Metric2>& metrics, 
     metrics[j] = intersect(metrics[j], grown);
     return true;
   };
+  // An edge whose two metrics are unchanged since both its tests last failed would fail them
+  // again (relax is a function of the two metrics): it is skipped, which leaves every result,
+  // and the sweep count, as without the skip. clock counts the edges tested.
+  const long m = long(edges.size());
+  std::vector<long> changedAt(std::size_t(mesh.numVertices()), -1), testedAt(std::size_t(m), -2);
+  long clock = 0;
   for (int sweep = 0; sweep < o.maxSweeps; ++sweep) {
     long changed = 0;
-    const long m = long(edges.size());
     for (long k = 0; k < m; ++k) {
-      const auto& e = edges[sweep % 2 == 0 ? k : m - 1 - k];
-      changed += relax(e[0], e[1]);
-      changed += relax(e[1], e[0]);
+      const std::size_t i = std::size_t(sweep % 2 == 0 ? k : m - 1 - k);
+      const auto& e = edges[i];
+      if (testedAt[i] > changedAt[std::size_t(e[0])] && testedAt[i] > changedAt[std::size_t(e[1])]) continue;
+      ++clock;
+      if (relax(e[0], e[1])) {
+        changedAt[std::size_t(e[1])] = clock;
+        ++changed;
+      }
+      if (relax(e[1], e[0])) {
+        changedAt[std::size_t(e[0])] = clock;
+        ++changed;
+      }
+      testedAt[i] = clock;
     }
     stats.sweeps = sweep + 1;
     stats.corrections += changed;

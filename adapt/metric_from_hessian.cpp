@@ -1,6 +1,7 @@
 #include "ablmg/adapt/metric_from_hessian.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
@@ -9,6 +10,11 @@
 #include <numbers>
 
 namespace ablmg::adapt {
+namespace {
+/// Below this many vertices the per-vertex loops run on the calling thread (waking a team costs
+/// more than a few thousand 2×2 eigen-decompositions).
+constexpr int kMinParallelVertices = 4096;
+}  // namespace
 
 ErrorNorm parseErrorNorm(const std::string& name) {
   if (name == "l2") return ErrorNorm::L2;
@@ -256,32 +262,42 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
   std::vector<Hessian2> shape(n);
   std::vector<double> sqrtDet(n);
   const std::vector<Vec2> walls = o.saddleShape > 0 ? wallTangents(mesh) : std::vector<Vec2>(n, Vec2::Zero());
-  for (int v = 0; v < n; ++v) {
-    const Hessian2 a = absoluteHessian(hessians[v], floor);
-    if (s == 1 && !h1) {  // the Lp metric, computed exactly as before the H1 option (bitwise same meshes)
-      shape[v] = (pInf ? 1.0 : std::pow(a.determinant(), -1.0 / (2 * o.p + 2))) * a;
-      sqrtDet[v] = std::sqrt(shape[v].determinant());
+  // Per vertex, independent: the same bits on any team size.
+  ParallelFailure shapeFailure;
+#pragma omp parallel for schedule(static) if (n >= kMinParallelVertices)
+  for (int v = 0; v < n; ++v)
+    shapeFailure.run(v, [&] {
+      const Hessian2 a = absoluteHessian(hessians[v], floor);
+      if (s == 1 && !h1) {  // the Lp metric, computed exactly as before the H1 option (bitwise same meshes)
+        shape[v] = (pInf ? 1.0 : std::pow(a.determinant(), -1.0 / (2 * o.p + 2))) * a;
+        sqrtDet[v] = std::sqrt(shape[v].determinant());
+        if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape, walls[v]);
+        return;
+      }
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+      es.computeDirect(a);
+      const Eigen::Vector2d l = es.eigenvalues();  // both ≥ floor > 0
+      const double det = l[0] * l[1], root = std::sqrt(det), rho = std::pow(det, delta);
+      const Eigen::Vector2d m(rho * std::pow(l[0] / root, s), rho * std::pow(l[1] / root, s));
+      shape[v] = es.eigenvectors() * m.asDiagonal() * es.eigenvectors().transpose();
+      sqrtDet[v] = std::sqrt(m[0] * m[1]);
       if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape, walls[v]);
-      continue;
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
-    es.computeDirect(a);
-    const Eigen::Vector2d l = es.eigenvalues();  // both ≥ floor > 0
-    const double det = l[0] * l[1], root = std::sqrt(det), rho = std::pow(det, delta);
-    const Eigen::Vector2d m(rho * std::pow(l[0] / root, s), rho * std::pow(l[1] / root, s));
-    shape[v] = es.eigenvectors() * m.asDiagonal() * es.eigenvectors().transpose();
-    sqrtDet[v] = std::sqrt(m[0] * m[1]);
-    if (o.saddleShape > 0) shape[v] = saddleShaped(hessians[v], shape[v], o.saddleShape, walls[v]);
-  }
+    });
+  shapeFailure.rethrow();
   const double target = complexityForVertices(o.targetVertices);
   const double hmax = effectiveHmax(mesh, o);
   double d = target / integrate(mesh, sqrtDet);
   std::vector<Metric2> out(n);
   for (int it = 0; it < 60; ++it) {
-    for (int v = 0; v < n; ++v) {
-      const Hessian2 m = d * shape[v];
-      out[v] = boundMetric(Metric2::raw(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)), o.hmin, hmax, o.maxAnisotropy);
-    }
+    // Each vertex's bound is its own: the same bits on any team size (the sum below is serial).
+    ParallelFailure failure;
+#pragma omp parallel for schedule(static) if (n >= kMinParallelVertices)
+    for (int v = 0; v < n; ++v)
+      failure.run(v, [&] {
+        const Hessian2 m = d * shape[v];
+        out[v] = boundMetric(Metric2::raw(m(0, 0), 0.5 * (m(0, 1) + m(1, 0)), m(1, 1)), o.hmin, hmax, o.maxAnisotropy);
+      });
+    failure.rethrow();
     const double c = metricComplexity(mesh, out);
     if (std::abs(c / target - 1) < 1e-4) break;
     // √det M scales like D where unbounded: a Newton-like fixed point on D.
@@ -295,7 +311,12 @@ std::vector<Metric2> metricFromHessians(const Mesh2& mesh, std::span<const Hessi
 std::vector<Metric2> intersectFields(std::span<const Metric2> a, std::span<const Metric2> b) {
   ABLMG_REQUIRE(a.size() == b.size(), "intersectFields: sizes differ (" << a.size() << " vs " << b.size() << ")");
   std::vector<Metric2> out(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) out[i] = intersect(a[i], b[i]);
+  const long n = long(a.size());
+  ParallelFailure failure;
+#pragma omp parallel for schedule(static) if (n >= kMinParallelVertices)
+  for (long i = 0; i < n; ++i)
+    failure.run(i, [&] { out[std::size_t(i)] = intersect(a[std::size_t(i)], b[std::size_t(i)]); });
+  failure.rethrow();
   return out;
 }
 

@@ -7,7 +7,7 @@
 //               [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double] [--hmin H] [--hmax H]
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
 //               [--dual-goal on|off]
-//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
+//               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--stop-jump J] [--warm-start on|off]
 //               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--png on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
@@ -200,7 +200,7 @@ bool parseMetricOption(ArgCursor& c, Args& a) {
   return true;
 }
 
-/// The loop and its mesher: --seed --stop-l2 --stop-h1 --stop-aim --warm-start
+/// The loop and its mesher: --seed --stop-l2 --stop-h1 --stop-aim --stop-jump --warm-start
 /// --repeat-min-change --plateau-gain --lattice. False if `c.key()` is none of them.
 bool parseLoopOption(ArgCursor& c, Args& a) {
   const std::string& key = c.key();
@@ -215,6 +215,8 @@ bool parseLoopOption(ArgCursor& c, Args& a) {
     const double v = c.number();
     ABLMG_REQUIRE(v >= 0 && v <= 1, "adapt: --stop-aim must be in [0, 1] (0: off), got " << v);
     a.options.stopSizeAim = v;
+  } else if (key == "--stop-jump") {
+    a.options.stopJump = c.numberIn(0, 100);
   } else if (key == "--warm-start") {
     a.options.warmStart = parseOnOff(c.value(), "adapt: --warm-start");
   } else if (key == "--repeat-min-change") {
@@ -272,15 +274,16 @@ Args parseArgs(const std::vector<std::string>& args) {
       a.config = key;
     } else {
       ABLMG_REQUIRE(
-          false, "adapt: unknown argument '"
-                     << key
-                     << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
-                        "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
-                        "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
-                        "--dual-share --dual-goal --max-aniso --seed "
-                        "--stop-l2 --stop-h1 --stop-aim --warm-start --lattice --saddle-shape --corner-grading "
-                        "--repeat-min-change "
-                        "--plateau-gain --uniform --vtu --medit --png --reference-vertices --out-dir --print-options)");
+          false,
+          "adapt: unknown argument '"
+              << key
+              << "' (valid: --problem --param --vertices --start-vertices --growth --passes "
+                 "--passes-up-to --cycles --target-vertices --p --norm --shape-blend --hgrad "
+                 "--hessian --hmin --hmax --hmax-uniform --l2-share --dual-weight --h1-weight "
+                 "--dual-share --dual-goal --max-aniso --seed "
+                 "--stop-l2 --stop-h1 --stop-aim --stop-jump --warm-start --lattice --saddle-shape --corner-grading "
+                 "--repeat-min-change "
+                 "--plateau-gain --uniform --vtu --medit --png --reference-vertices --out-dir --print-options)");
     }
   }
   ABLMG_REQUIRE(a.problem.empty() != a.config.empty() || (a.printOptions && a.problem.empty()),
@@ -398,6 +401,7 @@ nlohmann::json loopOptionsJson(const Args& a, int cycles) {
           {"stop_l2", a.options.stopL2},
           {"stop_h1", a.options.stopH1},
           {"stop_aim", a.options.stopSizeAim},
+          {"stop_jump", a.options.stopJump},
           {"saddle_shape", a.options.metric.saddleShape},
           {"corner_grading", a.options.cornerGrading},
           {"lattice", mesher::latticeOrientationName(a.options.mesh.placement.lattice.orientation)},
@@ -412,7 +416,7 @@ const char* kAdaptHelp =
                    [--p 2|1|inf] [--norm l2|h1] [--shape-blend W] [--hgrad G] [--hessian lsq|double]
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
                    [--dual-goal on|off]
-                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--warm-start on|off]
+                   [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--stop-jump J] [--warm-start on|off]
                    [--lattice short|axes|long]
                    [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off]
                    [--vtu on|off]
@@ -442,7 +446,8 @@ is at most E; N (--vertices) is then the most the run may use. With a stop, afte
 the next one is chosen from the errors of the last two sizes (log-log, the optimal rate where
 the fit is steeper) to reach A x E (--stop-aim A, default 0.95; 0 = off: whole sizes of the
 schedule) when that is below the schedule's next size, so the run does not overshoot the
-target by a whole size.
+target by a whole size; when it is beyond the next size but within J x the current one
+(--stop-jump J, default 16; <= 1 = off), the run goes there directly.
 --saddle-shape S: on near-harmonic saddles (indefinite Hessians) a shape of aspect up to 3^(S/2)
 at 45 degrees to the eigenvectors, meshed as right isosceles triangles by lattice rows the
 metric carries per vertex (default 1; 0 = off; adapt/metric_from_hessian.hpp). At boundary

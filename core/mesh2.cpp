@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 namespace ablmg {
@@ -40,6 +41,27 @@ struct HalfEdges {
   std::vector<int> start;
 };
 
+/// One bucket's half-edges (all with the same lo, in range) in HalfEdge order. Within a
+/// bucket that order is the one of (hi, forward, tri), which packs into one integer (hi and
+/// tri are non-negative ints): insertion sort on it for the usual few (a vertex's 4–8),
+/// std::sort on it for a crowded vertex. The same order as sorting on operator<.
+void sortBucket(HalfEdge* first, HalfEdge* last) {
+  const auto key = [](const HalfEdge& e) {
+    return (std::uint64_t(std::uint32_t(e.hi)) << 32) | (std::uint64_t(e.forward) << 31) | std::uint64_t(e.tri);
+  };
+  if (last - first > 16) {
+    std::sort(first, last, [&](const HalfEdge& a, const HalfEdge& b) { return key(a) < key(b); });
+    return;
+  }
+  for (HalfEdge* i = first + (first != last); i < last; ++i) {
+    const HalfEdge x = *i;
+    const std::uint64_t kx = key(x);
+    HalfEdge* j = i;
+    for (; j > first && key(*(j - 1)) > kx; --j) *j = *(j - 1);
+    *j = x;
+  }
+}
+
 HalfEdges halfEdges(const Mesh2& m) {
   const int nv = m.numVertices(), nt = m.numTriangles();
   HalfEdges r;
@@ -72,7 +94,8 @@ HalfEdges halfEdges(const Mesh2& m) {
     }
   }
 #pragma omp parallel for schedule(static, 4096) if (parallel)
-  for (int v = 0; v <= nv; ++v) std::sort(r.h.begin() + start[std::size_t(v)], r.h.begin() + start[std::size_t(v) + 1]);
+  for (int v = 0; v < nv; ++v) sortBucket(r.h.data() + start[std::size_t(v)], r.h.data() + start[std::size_t(v) + 1]);
+  std::sort(r.h.begin() + start[std::size_t(nv)], r.h.end());  // ids out of range: the whole key
   return r;
 }
 

@@ -195,20 +195,27 @@ bool ccwLess(const Vec2& u, const Vec2& v) {
 /// counter-clockwise order.
 Links linksFromPairs(std::span<const Vec2> pos, std::vector<std::pair<int, int>> pairs, int threads) {
   const int n = int(pos.size());
+  const long np = long(pairs.size());
   Links links;
   links.offsets.assign(n + 1, 0);
-  for (const auto& [i, j] : pairs) {
-    ++links.offsets[i + 1];
-    ++links.offsets[j + 1];
+  // Rows counted and filled in parallel (atomic slots): a row's ids arrive in any order, but
+  // each row is sorted by id below, so the rows do not depend on the threads.
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (long p = 0; p < np; ++p) {
+    const auto [i, j] = pairs[std::size_t(p)];
+    std::atomic_ref<int>(links.offsets[std::size_t(i) + 1]).fetch_add(1, std::memory_order_relaxed);
+    std::atomic_ref<int>(links.offsets[std::size_t(j) + 1]).fetch_add(1, std::memory_order_relaxed);
   }
   for (int i = 0; i < n; ++i) links.offsets[i + 1] += links.offsets[i];
   links.ids.resize(links.offsets[n]);
   links.ccw.resize(links.offsets[n]);
   {
     std::vector<int> fill(links.offsets.begin(), links.offsets.end() - 1);
-    for (const auto& [i, j] : pairs) {
-      links.ids[std::size_t(fill[std::size_t(i)]++)] = j;
-      links.ids[std::size_t(fill[std::size_t(j)]++)] = i;
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (long p = 0; p < np; ++p) {
+      const auto [i, j] = pairs[std::size_t(p)];
+      links.ids[std::size_t(std::atomic_ref<int>(fill[std::size_t(i)]).fetch_add(1, std::memory_order_relaxed))] = j;
+      links.ids[std::size_t(std::atomic_ref<int>(fill[std::size_t(j)]).fetch_add(1, std::memory_order_relaxed))] = i;
     }
   }
   pairs = {};
@@ -336,9 +343,11 @@ void deleteNonSatellites(const PlacementResult& placement, Links& links, int thr
     st.intersectionTests += tests;
     st.crossingsFound += crossings;
     long deleted = 0;
-    for (std::size_t e = 0; e < kill.size(); ++e)
-      if (kill[e] && links.alive[e]) {
-        links.alive[e] = 0;
+    const long nl = long(kill.size());
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : deleted)
+    for (long e = 0; e < nl; ++e)
+      if (kill[std::size_t(e)] && links.alive[std::size_t(e)]) {
+        links.alive[std::size_t(e)] = 0;
         ++deleted;
       }
     st.deletedEdges += deleted / 2;

@@ -1,6 +1,7 @@
 #include "ablmg/mesher/quality.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/mesher/parallel_threshold.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -52,11 +53,14 @@ double triangleQuality(const Vec2& a, const Vec2& b, const Vec2& c, const Metric
 
 std::vector<double> elementQualities(const Mesh2& mesh, std::span<const Metric2> metrics) {
   requireOnePerVertex(mesh, metrics, "elementQualities");
-  std::vector<double> q;
-  q.reserve(mesh.triangles.size());
-  for (const auto& [i, j, k] : mesh.triangles) {
+  const int nt = mesh.numTriangles();
+  std::vector<double> q(static_cast<std::size_t>(nt));
+  // Each q depends on its own triangle only: the same values for any team size.
+#pragma omp parallel for schedule(static) if (nt >= kMinParallelItems)
+  for (int t = 0; t < nt; ++t) {
+    const auto& [i, j, k] = mesh.triangles[std::size_t(t)];
     const Metric2 m = (1.0 / 3.0) * (metrics[i] + metrics[j] + metrics[k]);
-    q.push_back(triangleQuality(mesh.vertices[i], mesh.vertices[j], mesh.vertices[k], m));
+    q[std::size_t(t)] = triangleQuality(mesh.vertices[i], mesh.vertices[j], mesh.vertices[k], m);
   }
   return q;
 }

@@ -1,6 +1,7 @@
 #include "ablmg/mesher/slit_domain.hpp"
 
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
@@ -9,6 +10,8 @@
 #include <cstdint>
 #include <map>
 #include <set>
+
+#include <omp.h>
 
 namespace ablmg::mesher {
 namespace {
@@ -257,6 +260,68 @@ SlitPieces cutAtSlits(const Domain& domain, const MetricField& metric) {
 namespace {
 using PointKey = std::pair<std::uint64_t, std::uint64_t>;
 PointKey keyOf(const Vec2& p) { return {std::bit_cast<std::uint64_t>(p.x()), std::bit_cast<std::uint64_t>(p.y())}; }
+
+/// A piece's share of the meshing work: ∫ √det M over it (its node count, up to a constant),
+/// sampled at the centres of a kSamples² grid on its bounding box. Coarse, but it only decides
+/// how the pieces are scheduled, never what they become.
+double pieceWeight(const Domain& piece, const MetricField& metric) {
+  constexpr int kSamples = 32;
+  const auto [lo, hi] = piece.boundingBox();
+  const Vec2 d = (hi - lo) / kSamples;
+  std::vector<Vec2> pts;
+  for (int j = 0; j < kSamples; ++j)
+    for (int i = 0; i < kSamples; ++i) {
+      const Vec2 p = lo + Vec2((i + 0.5) * d.x(), (j + 0.5) * d.y());
+      if (piece.contains(p)) pts.push_back(p);
+    }
+  std::vector<double> density(pts.size());
+  metric.sqrtDeterminants(pts, density);
+  double w = 0;
+  for (const double x : density) w += x;
+  return w * d.x() * d.y();
+}
+
+/// The pieces meshed with `options`, in order. With two threads or more (options' or OpenMP's), a thread-safe metric
+/// and no piece holding more than kMaxShare of the work, the pieces are meshed concurrently, one
+/// thread each (the mesher's own parallel regions then run on one thread: its output does not
+/// depend on the thread count, so the meshes are the same bits as one after the other); most
+/// of a piece's meshing runs on one thread anyway (the lattice below the banded growth's size,
+/// the post-pass, the validation), so two pieces side by side take about half the wall time.
+/// Progress is reported by the calling thread's pieces only. The first piece's error (in piece
+/// order) is thrown, as the sequential loop would.
+std::vector<MeshResult> meshPieces(const std::vector<Domain>& pieces, const MetricField& metric,
+                                   const MeshOptions& options) {
+  constexpr double kMaxShare = 0.65;  // beyond it one piece on one thread outlasts both on two
+  const int n = int(pieces.size());
+  std::vector<MeshResult> parts(pieces.size());
+  const int asked = std::max(options.placement.threads, options.connect.threads);  // 0: OpenMP's default
+  const int threads = std::min(n, asked > 0 ? asked : omp_get_max_threads());
+  bool concurrent = threads >= 2 && !omp_in_parallel() && metric.isThreadSafe();
+  if (concurrent) {
+    std::vector<double> w(pieces.size());
+    for (int k = 0; k < n; ++k) w[std::size_t(k)] = pieceWeight(pieces[std::size_t(k)], metric);
+    double total = 0;
+    for (const double x : w) total += x;
+    concurrent = total > 0 && std::isfinite(total) && *std::max_element(w.begin(), w.end()) <= kMaxShare * total;
+  }
+  if (!concurrent) {
+    for (int k = 0; k < n; ++k) parts[std::size_t(k)] = meshDomain(pieces[std::size_t(k)], metric, options);
+    return parts;
+  }
+  MeshOptions quiet = options;
+  quiet.progress = {};
+  ParallelFailure failure;
+  const int saved = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);  // the pieces' team active, the mesher's regions inside it not
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (int k = 0; k < n; ++k)
+    failure.run(k, [&] {
+      parts[std::size_t(k)] = meshDomain(pieces[std::size_t(k)], metric, omp_get_thread_num() == 0 ? options : quiet);
+    });
+  omp_set_max_active_levels(saved);
+  failure.rethrow();
+  return parts;
+}
 }  // namespace
 
 MeshResult meshSlitDomain(const Domain& domain, const MetricField& metric, const MeshOptions& options) {
@@ -271,8 +336,9 @@ MeshResult meshSlitDomain(const Domain& domain, const MetricField& metric, const
   MeshResult out;
   Mesh2& m = out.mesh;
   std::map<std::pair<int, int>, int> cutEdges;  // undirected cut edge → times met
-  for (std::size_t k = 0; k < cut.pieces.size(); ++k) {
-    MeshResult part = meshDomain(cut.pieces[k], metric, options);
+  std::vector<MeshResult> parts = meshPieces(cut.pieces, metric, options);
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    MeshResult& part = parts[k];
     std::vector<char> onBoundary(std::size_t(part.mesh.numVertices()), 0);
     for (const auto& e : part.mesh.boundaryEdges) onBoundary[std::size_t(e.a)] = onBoundary[std::size_t(e.b)] = 1;
     std::vector<int> id(std::size_t(part.mesh.numVertices()));

@@ -185,7 +185,8 @@ TEST(AdaptiveLoop, StopTargetIsReachedWithoutOvershootingByAWholeSize) {
   AdaptOptions o;
   o.targetVertices = geometricSchedule(4000, {.startVertices = 250, .passes = 1});  // 250 … 4000
   o.stopSizeAim = 0;
-  o.cycles = 4;  // to 2000, no stop: the errors the target is chosen from
+  o.stopJump = 0;  // only the lowering of the next size (the jump: the next test)
+  o.cycles = 4;    // to 2000, no stop: the errors the target is chosen from
   const AdaptReport plain = runAdaptiveLoop(problem, o);
   ASSERT_EQ(plain.cycles.size(), 4u);
   const double e1000 = plain.cycles[2].h1, e2000 = plain.cycles[3].h1;
@@ -210,6 +211,41 @@ TEST(AdaptiveLoop, StopTargetIsReachedWithoutOvershootingByAWholeSize) {
   // The cycles before the prediction are those of the plain run.
   for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(aimed.cycles[k].h1, plain.cycles[k].h1) << "cycle " << k;
   o.stopSizeAim = 1.5;
+  EXPECT_THROW(runAdaptiveLoop(problem, o), InputError);
+}
+
+TEST(AdaptiveLoop, WithAStopTheRunJumpsToThePredictedSize) {
+  // A target that the errors of the last two sizes put beyond the schedule's next size but
+  // within stopJump × the current one: with the jump the run goes there directly (a step of
+  // more than the growth 2) and reaches the target with fewer cycles and fewer vertices in all
+  // than without (stopJump 0: every size of the doubling schedule up to the prediction).
+  const auto problem = fem::makeProblem("wavefront");
+  AdaptOptions o;
+  o.targetVertices = geometricSchedule(8000, {.startVertices = 125, .passes = 1});  // 125 … 8000
+  o.cycles = 4;                                                                     // to 1000
+  const AdaptReport plain = runAdaptiveLoop(problem, o);
+  ASSERT_EQ(plain.cycles.size(), 4u);
+  o.cycles = 0;
+  o.stopH1 = 0.6 * plain.cycles[3].h1;  // about 2800 vertices at the H1 rate −1/2
+  o.stopJump = 0;
+  const AdaptReport stepped = runAdaptiveLoop(problem, o);
+  o.stopJump = 16;
+  const AdaptReport jumped = runAdaptiveLoop(problem, o);
+  ASSERT_TRUE(stepped.stoppedEarly);
+  ASSERT_TRUE(jumped.stoppedEarly);
+  EXPECT_LE(jumped.cycles.back().h1, o.stopH1);
+  EXPECT_LT(jumped.cycles.size(), stepped.cycles.size());
+  long sumStepped = 0, sumJumped = 0;
+  double largestStep = 0;
+  for (const auto& c : stepped.cycles) sumStepped += c.vertices;
+  for (std::size_t k = 0; k < jumped.cycles.size(); ++k) {
+    sumJumped += jumped.cycles[k].vertices;
+    if (k > 0)
+      largestStep = std::max(largestStep, jumped.cycles[k].targetVertices / jumped.cycles[k - 1].targetVertices);
+  }
+  EXPECT_LT(sumJumped, sumStepped);
+  EXPECT_GT(largestStep, 2.5);
+  o.stopJump = -1;
   EXPECT_THROW(runAdaptiveLoop(problem, o), InputError);
 }
 

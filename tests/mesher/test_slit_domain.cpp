@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <omp.h>
 #include <set>
+#include <thread>
 
 using namespace ablmg;
 using namespace ablmg::mesher;
@@ -153,4 +155,34 @@ TEST(MeshSlitDomain, CutThatMeetsAnotherSlitJoinsItOnTheSideItArrivesAt) {
     EXPECT_NEAR(r.mesh.area(), 4.0, 1e-12);
     EXPECT_EQ(edgesThroughSlit(r.mesh, {-0.5, 0.5 * dir}, {-0.5, -0.5 * dir}, 9, 10), 0) << dir;
   }
+}
+
+TEST(MeshSlitDomain, PiecesMeshedSideBySideAreTheSameAsOneAfterTheOther) {
+  // Two balanced pieces and a thread-safe metric: with two threads the pieces are meshed
+  // concurrently, one thread each; with one, one after the other. Same bits either way, and
+  // progress comes from the calling thread only.
+  const Domain d = Domain::rectangle(-1, -1, 1, 1).withSlit({{1, 0}, {0, 0}}, 7, 8);
+  const ConstantMetricField metric(Metric2::fromSizes(0.06, 0.03, 0.4));
+  const int saved = omp_get_max_threads();
+  const auto caller = std::this_thread::get_id();
+  MeshOptions options;
+  bool otherThread = false;
+  long reports = 0;
+  options.progress = [&](const Progress&) {
+    otherThread = otherThread || std::this_thread::get_id() != caller;
+    ++reports;
+  };
+  omp_set_num_threads(1);
+  const MeshResult one = meshDomain(d, metric, options);
+  omp_set_num_threads(2);
+  const MeshResult two = meshDomain(d, metric, options);
+  omp_set_num_threads(saved);
+  EXPECT_TRUE(two.mesh.validate().ok) << two.mesh.validate().firstProblem;
+  EXPECT_GT(two.mesh.numVertices(), 1000);
+  EXPECT_EQ(two.mesh.vertices, one.mesh.vertices);
+  EXPECT_EQ(two.mesh.triangles, one.mesh.triangles);
+  EXPECT_EQ(two.mesh.boundaryEdges.size(), one.mesh.boundaryEdges.size());
+  EXPECT_EQ(two.metric.size(), one.metric.size());
+  EXPECT_GT(reports, 0);
+  EXPECT_FALSE(otherThread);
 }
