@@ -2,6 +2,8 @@
 
 #include "ablmg/core/error.hpp"
 
+#include <omp.h>
+
 namespace ablmg {
 
 BucketGrid::BucketGrid(const Vec2& lo, const Vec2& hi, double cellSize, long maxCells) : lo_(lo) {
@@ -16,17 +18,42 @@ BucketGrid::BucketGrid(const Vec2& lo, const Vec2& hi, double cellSize, long max
 }
 
 void BucketGrid::build(std::span<const Vec2> points) {
-  const int nc = numCells();
+  const int nc = numCells(), n = int(points.size());
   offsets_.assign(std::size_t(nc) + 1, 0);
-  std::vector<int> cellOfPoint(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    cellOfPoint[i] = cellOf(points[i]);
-    ++offsets_[cellOfPoint[i] + 1];
-  }
-  for (int c = 0; c < nc; ++c) offsets_[c + 1] += offsets_[c];
   ids_.resize(points.size());
-  std::vector<int> fill(offsets_.begin(), offsets_.end() - 1);
-  for (std::size_t i = 0; i < points.size(); ++i) ids_[fill[cellOfPoint[i]]++] = int(i);  // ascending ids per cell
+  // A counting sort in contiguous blocks of points per thread: each thread counts its block's
+  // points per cell, then fills its own slots, which follow those of the blocks before it, so
+  // every cell lists its ids ascending, as the serial sort does.
+  constexpr int kParallelPoints = 1 << 15;
+  const bool parallel = n >= kParallelPoints;
+  const int threads = parallel ? omp_get_max_threads() : 1;
+  std::vector<int> cellOfPoint(points.size());
+  std::vector<int> slot(std::size_t(threads) * std::size_t(nc), 0);  // per thread and cell
+#pragma omp parallel num_threads(threads) if (parallel)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
+    int* mine = slot.data() + std::size_t(t) * std::size_t(nc);
+    for (int i = lo; i < hi; ++i) ++mine[cellOfPoint[std::size_t(i)] = cellOf(points[std::size_t(i)])];
+#pragma omp barrier
+#pragma omp single
+    for (int c = 0; c < nc; ++c) {
+      int count = 0;
+      for (int u = 0; u < threads; ++u) count += slot[std::size_t(u) * std::size_t(nc) + std::size_t(c)];
+      offsets_[std::size_t(c) + 1] = offsets_[std::size_t(c)] + count;
+    }
+#pragma omp for schedule(static)
+    for (int c = 0; c < nc; ++c) {
+      int next = offsets_[std::size_t(c)];
+      for (int u = 0; u < threads; ++u) {
+        int& s = slot[std::size_t(u) * std::size_t(nc) + std::size_t(c)];
+        const int k = s;
+        s = next;
+        next += k;
+      }
+    }
+    for (int i = lo; i < hi; ++i) ids_[std::size_t(mine[cellOfPoint[std::size_t(i)]]++)] = i;
+  }
 }
 
 void BucketGrid::buildFromPairs(std::span<const std::pair<int, int>> cellIds) {

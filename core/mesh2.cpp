@@ -3,9 +3,13 @@
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <sstream>
 
 namespace ablmg {
@@ -32,12 +36,13 @@ constexpr int kParallelTriangles = 1 << 15;
 
 /// All half-edges in HalfEdge order, and start[v] = the first with lo = v (start[nv] = the
 /// first whose lo is out of range, start[nv + 1] = the end): a counting sort on `lo`
-/// (O(V + T)), then each bucket (a vertex's few edges) sorted on its own. In parallel the
-/// buckets fill in any order, but each is then sorted on the whole key (unique: the triangle
-/// differs), so the result does not depend on the threads. Vertex ids out of range go in one
-/// last bucket, sorted in full (validate() reports them; no out-of-bounds access on the way).
+/// (O(V + T)), then each bucket (a vertex's few edges) sorted on its own, so the result does
+/// not depend on the threads. Vertex ids out of range go in one last bucket, sorted in full
+/// (validate() reports them; no out-of-bounds access on the way). `h` views `store`, which is
+/// left uninitialised until the fill: its pages are first touched by the threads that fill them.
 struct HalfEdges {
-  std::vector<HalfEdge> h;
+  std::unique_ptr<HalfEdge[]> store;
+  std::span<HalfEdge> h;
   std::vector<int> start;
 };
 
@@ -64,37 +69,57 @@ void sortBucket(HalfEdge* first, HalfEdge* last) {
 
 HalfEdges halfEdges(const Mesh2& m) {
   const int nv = m.numVertices(), nt = m.numTriangles();
+  const std::size_t buckets = std::size_t(nv) + 1;
   HalfEdges r;
   auto& start = r.start;
-  start.assign(static_cast<std::size_t>(nv) + 2, 0);
+  start.assign(buckets + 1, 0);
+  r.store.reset(new HalfEdge[3 * std::size_t(nt)]);
+  r.h = {r.store.get(), 3 * std::size_t(nt)};
   auto bucket = [nv](int lo) { return std::size_t(lo >= 0 && lo < nv ? lo : nv); };
+  const auto lo = [&](int t, int k) {
+    const auto& tr = m.triangles[std::size_t(t)];
+    return std::min(tr[k], tr[(k + 1) % 3]);
+  };
   const bool parallel = nt >= kParallelTriangles;
-#pragma omp parallel for schedule(static) if (parallel)
-  for (int t = 0; t < nt; ++t) {
-    const auto& tr = m.triangles[std::size_t(t)];
-    for (int k = 0; k < 3; ++k) {
-      int& c = start[bucket(std::min(tr[k], tr[(k + 1) % 3])) + 1];
-#pragma omp atomic
-      ++c;
+  const int threads = parallel ? omp_get_max_threads() : 1;
+  // Per thread: its count per bucket, then its first slot in each bucket. Both loops over the
+  // triangles are schedule(static) in one region, so a thread gets the same range in both.
+  std::vector<int> slot(std::size_t(threads) * buckets, 0);
+#pragma omp parallel num_threads(threads) if (parallel)
+  {
+    int* mine = slot.data() + std::size_t(omp_get_thread_num()) * buckets;
+#pragma omp for schedule(static)
+    for (int t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) ++mine[bucket(lo(t, k))];
+#pragma omp single
+    {
+      for (std::size_t b = 0; b < buckets; ++b) {
+        int n = 0;
+        for (int i = 0; i < threads; ++i) n += slot[std::size_t(i) * buckets + b];
+        start[b + 1] = start[b] + n;
+      }
     }
-  }
-  for (int v = 0; v <= nv; ++v) start[std::size_t(v) + 1] += start[std::size_t(v)];
-  r.h.resize(3 * m.triangles.size());
-  std::vector<int> fill(start.begin(), start.end() - 1);
-#pragma omp parallel for schedule(static) if (parallel)
-  for (int t = 0; t < nt; ++t) {
-    const auto& tr = m.triangles[std::size_t(t)];
-    for (int k = 0; k < 3; ++k) {
-      const int a = tr[k], b = tr[(k + 1) % 3];
-      int& f = fill[bucket(std::min(a, b))];
-      int slot;
-#pragma omp atomic capture
-      slot = f++;
-      r.h[std::size_t(slot)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+#pragma omp for schedule(static)
+    for (int b = 0; b < int(buckets); ++b) {
+      int next = start[std::size_t(b)];
+      for (int i = 0; i < threads; ++i) {
+        int& s = slot[std::size_t(i) * buckets + std::size_t(b)];
+        const int n = s;
+        s = next;
+        next += n;
+      }
     }
+#pragma omp for schedule(static)
+    for (int t = 0; t < nt; ++t) {
+      const auto& tr = m.triangles[std::size_t(t)];
+      for (int k = 0; k < 3; ++k) {
+        const int a = tr[k], b = tr[(k + 1) % 3];
+        r.h[std::size_t(mine[bucket(std::min(a, b))]++)] = {std::min(a, b), std::max(a, b), a < b ? 1 : 0, t};
+      }
+    }
+#pragma omp for schedule(static, 4096)
+    for (int v = 0; v < nv; ++v) sortBucket(r.h.data() + start[std::size_t(v)], r.h.data() + start[std::size_t(v) + 1]);
   }
-#pragma omp parallel for schedule(static, 4096) if (parallel)
-  for (int v = 0; v < nv; ++v) sortBucket(r.h.data() + start[std::size_t(v)], r.h.data() + start[std::size_t(v) + 1]);
   std::sort(r.h.begin() + start[std::size_t(nv)], r.h.end());  // ids out of range: the whole key
   return r;
 }
@@ -367,7 +392,8 @@ std::vector<std::array<int, 2>> Mesh2::edges() const {
     return std::min({tr[0], tr[1], tr[2]}) >= 0 && std::max({tr[0], tr[1], tr[2]}) < nv;
   });
   if (inRange) {  // from the half-edges (counting sort, O(V + T)): the same order as sorting
-    const auto h = halfEdges(*this).h;
+    const HalfEdges he = halfEdges(*this);
+    const auto& h = he.h;
     e.reserve(h.size() / 2 + 1);
     for (const auto& x : h)
       if (e.empty() || e.back()[0] != x.lo || e.back()[1] != x.hi) e.push_back({x.lo, x.hi});

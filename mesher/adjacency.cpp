@@ -131,6 +131,48 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
   return a;
 }
 
+/// The transpose of the compact `a` (row j lists every i whose row holds j), rows sorted: a counting sort
+/// in contiguous blocks of rows per thread, each thread counting its block's entries per
+/// column and then filling its own slots, which follow those of the blocks before it (lower
+/// rows), so a column's rows come out ascending, as from the serial sort.
+AdjacencyLists transposed(const AdjacencyLists& a) {
+  const int n = a.size();
+  const bool parallel = n >= kMinParallelItems;
+  const int threads = parallel ? omp_get_max_threads() : 1;
+  std::vector<int> slot(std::size_t(threads) * std::size_t(n), 0);  // per thread and column
+  AdjacencyLists tr;
+  tr.offsets.assign(std::size_t(n) + 1, 0);
+  tr.ids.resize(a.ids.size());
+#pragma omp parallel num_threads(threads) if (parallel)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
+    int* mine = slot.data() + std::size_t(t) * std::size_t(n);
+    for (int i = lo; i < hi; ++i)
+      for (int j : a.neighbours(i)) ++mine[j];
+#pragma omp barrier
+#pragma omp single
+    for (int j = 0; j < n; ++j) {
+      int count = 0;
+      for (int u = 0; u < threads; ++u) count += slot[std::size_t(u) * std::size_t(n) + std::size_t(j)];
+      tr.offsets[std::size_t(j) + 1] = tr.offsets[std::size_t(j)] + count;
+    }
+#pragma omp for schedule(static)
+    for (int j = 0; j < n; ++j) {
+      int next = tr.offsets[std::size_t(j)];
+      for (int u = 0; u < threads; ++u) {
+        int& s = slot[std::size_t(u) * std::size_t(n) + std::size_t(j)];
+        const int c = s;
+        s = next;
+        next += c;
+      }
+    }
+    for (int i = lo; i < hi; ++i)
+      for (int j : a.neighbours(i)) tr.ids[std::size_t(mine[j]++)] = i;
+  }
+  return tr;
+}
+
 }  // namespace
 
 AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> m, double radius) {
@@ -148,17 +190,8 @@ AdjacencyLists buildAdjacency(std::span<const Vec2> x, std::span<const Metric2> 
     });
     std::sort(out.begin() + std::ptrdiff_t(start), out.end());
   });
-  // Transpose (counting sort: rows come out sorted), then merge each row with its transpose.
-  AdjacencyLists tr;
-  tr.offsets.assign(std::size_t(n) + 1, 0);
-  for (int j : found.ids) ++tr.offsets[j + 1];
-  for (int i = 0; i < n; ++i) tr.offsets[i + 1] += tr.offsets[i];
-  tr.ids.resize(found.ids.size());
-  {
-    std::vector<int> fill(tr.offsets.begin(), tr.offsets.end() - 1);
-    for (int i = 0; i < n; ++i)
-      for (int j : found.neighbours(i)) tr.ids[fill[j]++] = i;
-  }
+  // Transpose, then merge each row with its transpose.
+  const AdjacencyLists tr = transposed(found);
   return blockedCsr(n, [&](int i, std::vector<int>& out) {
     const auto f = found.neighbours(i), t = tr.neighbours(i);
     std::set_union(f.begin(), f.end(), t.begin(), t.end(), std::back_inserter(out));

@@ -25,10 +25,11 @@ struct CellVertex {
 };
 
 /// Voronoi cell of the origin among `pts` (Sutherland–Hodgman clipping of the square
-/// [−2, 2]² by the half-planes y·p ≤ |y|²/2), counter-clockwise, each edge labelled.
-std::vector<CellVertex> voronoiCell(const std::vector<std::pair<Vec2, int>>& pts) {
-  std::vector<CellVertex> poly{{{-2, -2}, -1}, {{2, -2}, -1}, {{2, 2}, -1}, {{-2, 2}, -1}};
-  std::vector<CellVertex> next;
+/// [−2, 2]² by the half-planes y·p ≤ |y|²/2), counter-clockwise, each edge labelled, into
+/// `poly`; `next` is scratch (both reused from node to node: no allocation once grown).
+void voronoiCell(const std::vector<std::pair<Vec2, int>>& pts, std::vector<CellVertex>& poly,
+                 std::vector<CellVertex>& next) {
+  poly.assign({{{-2, -2}, -1}, {{2, -2}, -1}, {{2, 2}, -1}, {{-2, 2}, -1}});
   for (const auto& [y, id] : pts) {
     const double h = 0.5 * y.squaredNorm();
     next.clear();
@@ -44,7 +45,6 @@ std::vector<CellVertex> voronoiCell(const std::vector<std::pair<Vec2, int>>& pts
     poly.swap(next);
     if (poly.empty()) break;
   }
-  return poly;
 }
 
 }  // namespace
@@ -55,26 +55,33 @@ LocalTopology localTopology(std::span<const Vec2> x, std::span<const Metric2> m,
   std::vector<std::vector<int>> rows;
   rows.resize(std::size_t(n));
   ParallelFailure failure;  // the cells allocate: rethrown after the region, the lowest node's
-#pragma omp parallel for schedule(dynamic, 256) if (n >= kMinParallelItems)
-  for (int i = 0; i < n; ++i)
-    failure.run(i, [&] {
-      if (kinds[i] != NodeKind::Interior || i % stride != 0) return;
-      std::vector<std::pair<Vec2, int>> pts;
-      for (int j : adj.neighbours(i)) pts.push_back({toMetric(m[i], x[j] - x[i]), j});
-      const std::vector<CellVertex> cell = voronoiCell(pts);
-      std::vector<int> ring;
-      bool closed = !cell.empty();
-      for (std::size_t k = 0; k < cell.size() && closed; ++k) {
-        if (cell[k].label < 0)
-          closed = false;
-        else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge)
-          ring.push_back(cell[k].label);
-      }
-      if (closed) rows[std::size_t(i)] = std::move(ring);
-    });
+#pragma omp parallel if (n >= kMinParallelItems)
+  {
+    std::vector<std::pair<Vec2, int>> pts;  // per thread, reused
+    std::vector<CellVertex> cell, scratch;
+    std::vector<int> ring;
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < n; ++i)
+      failure.run(i, [&] {
+        if (kinds[i] != NodeKind::Interior || i % stride != 0) return;
+        pts.clear();
+        for (int j : adj.neighbours(i)) pts.push_back({toMetric(m[i], x[j] - x[i]), j});
+        voronoiCell(pts, cell, scratch);
+        ring.clear();
+        bool closed = !cell.empty();
+        for (std::size_t k = 0; k < cell.size() && closed; ++k) {
+          if (cell[k].label < 0)
+            closed = false;
+          else if ((cell[(k + 1) % cell.size()].p - cell[k].p).norm() >= minEdge)
+            ring.push_back(cell[k].label);
+        }
+        if (closed) rows[std::size_t(i)] = ring;
+      });
+  }
   failure.rethrow();
   LocalTopology t;
   t.degree.assign(std::size_t(n), -1);
+  t.offsets.reserve(std::size_t(n) + 1);
   for (int i = 0; i < n; ++i) {
     const auto& r = rows[std::size_t(i)];
     if (!r.empty()) t.degree[std::size_t(i)] = int(r.size());

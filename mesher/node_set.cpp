@@ -1,5 +1,7 @@
 #include "ablmg/mesher/node_set.hpp"
 
+#include "ablmg/mesher/parallel_threshold.hpp"
+
 #include <algorithm>
 #include <utility>
 
@@ -35,6 +37,12 @@ void AdjacencyLists::compact() {
 long coincidentNodes(const NodeSet& nodes, const AdjacencyLists& adj, std::vector<char>& drop) {
   const int n = nodes.size();
   drop.assign(std::size_t(n), 0);
+  // Usually there is none: found in parallel first, the serial pass below runs only if any.
+  long shared = 0;
+#pragma omp parallel for schedule(static) reduction(+ : shared) if (n >= kMinParallelItems)
+  for (int i = 0; i < n; ++i)
+    for (int j : adj.neighbours(i)) shared += j > i && nodes.positions[i] == nodes.positions[j];
+  if (shared == 0) return 0;
   long count = 0;
   // Enum order is Vertex < Segment < Interior: a lower (kind, index) ranks higher.
   auto below = [&](int a, int b) { return std::pair(nodes.kinds[a], a) > std::pair(nodes.kinds[b], b); };
