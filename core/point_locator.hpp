@@ -11,7 +11,10 @@
 /// thousands of thin triangles from the point (tanh-layer cycle mesh: 2× less CPU per query
 /// without a hint); a uniform mesh's cells hold a triangle or two and cost as before. A visibility walk with exact orientation tests then moves
 /// to the containing triangle. Passing the previous answer as `hint`
-/// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query.
+/// (neighbouring queries) makes the walk a few steps long. Expected O(1) per query. A walk from a
+/// hint gives up after 4√n + 64 steps; one from the grid goes on for up to n steps (across a
+/// stretched layer it can be 10³–10⁴ thin triangles long), and only then (a cycle) the
+/// triangles are scanned.
 /// A walk from a hint that stops at the boundary (a non-convex mesh) is redone from the grid. A
 /// walk from the grid that stops there too (its straight line left the mesh through a notch: the
 /// start triangle of a cell straddling a re-entrant corner lies across it) is checked against
