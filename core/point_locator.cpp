@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace ablmg {
 
@@ -243,8 +244,10 @@ int PointLocator::acrossTheBoundary(const Vec2& p, int stopped) const {
   constexpr int kRescue = 64, kWalks = 8;
   int i0 = clampedCell((p.x() - lo_.x()) / cellSize_.x(), nx_);
   int j0 = clampedCell((p.y() - lo_.y()) / cellSize_.y(), ny_);
-  std::vector<int> cand;
-  for (int pass = 0; pass < 2 && cand.empty(); ++pass) {
+  // At most ⌈total / stride⌉ ≤ kRescue candidates: on the stack (this runs per query).
+  std::array<int, kRescue> candStore;
+  int nCand = 0;
+  for (int pass = 0; pass < 2 && nCand == 0; ++pass) {
     if (pass == 1) {  // around the start triangle's cell
       const Vec2& c = centroid_[std::size_t(stopped)];
       i0 = clampedCell((c.x() - lo_.x()) / cellSize_.x(), nx_);
@@ -255,12 +258,20 @@ int PointLocator::acrossTheBoundary(const Vec2& p, int stopped) const {
       for (int i = std::max(i0 - 1, 0); i <= std::min(i0 + 1, nx_ - 1); ++i)
         total += cellStart_[std::size_t(j) * nx_ + i + 1] - cellStart_[std::size_t(j) * nx_ + i];
     const int stride = std::max(1, (total + kRescue - 1) / kRescue);
+    // Every stride-th triangle of the cells' lists taken in turn (k: the position in them),
+    // stepping over the others instead of visiting each: crowded cells hold thousands.
     int k = 0;
     for (int j = std::max(j0 - 1, 0); j <= std::min(j0 + 1, ny_ - 1); ++j)
-      for (int i = std::max(i0 - 1, 0); i <= std::min(i0 + 1, nx_ - 1); ++i)
-        for (int q = cellStart_[std::size_t(j) * nx_ + i]; q < cellStart_[std::size_t(j) * nx_ + i + 1]; ++q, ++k)
-          if (k % stride == 0) cand.push_back(order_[std::size_t(q)]);
+      for (int i = std::max(i0 - 1, 0); i <= std::min(i0 + 1, nx_ - 1); ++i) {
+        const int b = cellStart_[std::size_t(j) * nx_ + i], e = cellStart_[std::size_t(j) * nx_ + i + 1];
+        for (int q = b + (stride - k % stride) % stride; q < e; q += stride) {
+          ABLMG_ASSERT(nCand < kRescue, "");
+          candStore[std::size_t(nCand++)] = order_[std::size_t(q)];
+        }
+        k += e - b;
+      }
   }
+  const std::span<const int> cand(candStore.data(), std::size_t(nCand));
   for (const int t : cand)
     if (contains(t, p)) return t;
   const int cap = 4 * int(std::sqrt(double(mesh_.numTriangles()))) + 64;
