@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <tuple>
 
 namespace ablmg::adapt {
@@ -100,14 +101,17 @@ namespace {
 struct DualCorrection {
   std::vector<double> scale;
   std::vector<Hessian2> hessians;
+  std::unique_ptr<fem::Factorisation> factor;  ///< in: u's, for the dual's solve (same A); freed by recoverWithDual
 };
 bool hasDual(const fem::PoissonProblem& problem) { return !problem.dirichlet.empty() || problem.hasDirichletDefault; }
 /// u's recovered Hessians and, with `withMetric` (not the last cycle), the correction of the next
 /// metric: the H1 weight's density factor, and when the dual is used (dualWeight, dualShare) the
 /// unit-load dual solved (its wall seconds in `tDual`) and, with dualShare, recovered with u in
 /// one pass (recoverHessians of two fields: the patches and their QR shared, the same Hessians).
+/// The dual has u's matrix: d.factor (u's factorisation) solves it without a second one.
 std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& u, const fem::PoissonProblem& problem,
                                       bool withMetric, const AdaptOptions& options, DualCorrection& d, double& tDual) {
+  std::unique_ptr<fem::Factorisation> factor = std::move(d.factor);  // freed on return, whatever the path
   const std::span<const double> uv(u.data(), std::size_t(u.size()));
   tDual = 0;
   if (!withMetric) return recoverHessians(mesh, uv, options.hessian);
@@ -117,7 +121,7 @@ std::vector<Hessian2> recoverWithDual(const Mesh2& mesh, const Eigen::VectorXd& 
     return recoverHessians(mesh, uv, options.hessian);
   }
   const Stopwatch watch;
-  const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve);
+  const fem::PoissonSolution z = fem::solvePoisson(mesh, unitLoadDual(problem), options.solve, factor);
   tDual = watch.seconds();
   const std::span<const double> zv(z.u.data(), std::size_t(z.u.size()));
   if (dualWeight > 0 || options.h1Weight > 0) d.scale = densityWeightScale(mesh, uv, zv, dualWeight, options.h1Weight);
@@ -345,7 +349,8 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
 
     reportStage(options, "solve", s, cycles, row.vertices);
     watch.restart();
-    const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve);
+    DualCorrection dual;  // dual.factor: u's factorisation, kept for the dual's solve
+    const fem::PoissonSolution sol = fem::solvePoisson(current.mesh, poisson, options.solve, dual.factor);
     row.tSolve = watch.seconds();
     row.tAssembly = sol.stats.assemblySeconds;
     row.tOrdering = sol.stats.orderingSeconds;
@@ -370,7 +375,6 @@ AdaptReport runAdaptiveLoop(const AdaptProblem& problem, const AdaptOptions& opt
     // solve counts in the metric's time).
     reportStage(options, "recover", s, cycles, row.vertices);
     watch.restart();
-    DualCorrection dual;
     double tDual = 0;
     const auto hessians = recoverWithDual(current.mesh, sol.u, poisson, !last, options, dual, tDual);
     row.tRecover = watch.seconds() - tDual;

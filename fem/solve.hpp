@@ -36,6 +36,8 @@
 
 #include <Eigen/Core>
 
+#include <memory>
+
 namespace ablmg::fem {
 
 enum class Ordering {
@@ -74,11 +76,49 @@ struct PoissonSolution {
   SolveStats stats;
 };
 
+/// The ordering and the Cholesky factor of an assembled system's A, kept to solve further
+/// right-hand sides with the same matrix: the adaptive loop's unit-load dual has the primal's
+/// A (same κ, same Dirichlet vertices) and another b. A solve with a kept factor gives the same
+/// bits as solveSystem on a system with that A (the same order and factor).
+class Factorisation {
+ public:
+  /// Orders and factorises system.A (a copy of A is kept, for sameMatrix and the residual).
+  /// `stats` receives the ordering, symbolic and numeric fields and the counts. InputError as
+  /// solveSystem.
+  explicit Factorisation(const LinearSystem& system, const SolveOptions& options = {}, SolveStats* stats = nullptr);
+  /// The same, taking A over (`points`: system.dofPoints, read for the geometric ordering only).
+  Factorisation(Eigen::SparseMatrix<double>&& A, const std::vector<Vec2>& points, const SolveOptions& options = {},
+                SolveStats* stats = nullptr);
+  ~Factorisation();
+  Factorisation(Factorisation&&) noexcept;
+  Factorisation& operator=(Factorisation&&) noexcept;
+
+  /// x with A x = b (b: one entry per unknown). `stats` (optional): triangularSeconds and the
+  /// factor's counts.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, SolveStats* stats = nullptr);
+  /// Whether A is bitwise the factorised matrix (same size, pattern and values).
+  bool sameMatrix(const Eigen::SparseMatrix<double>& A) const;
+  const Eigen::SparseMatrix<double>& matrix() const;
+
+  struct Impl;  ///< opaque (fem/solve.cpp; solveSystem uses it without copying A)
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Solves A x = b of an assembled system. Returns x (free unknowns only).
 /// `stats` (optional) receives the solve fields (not assemblySeconds / dirichletVertices).
 Eigen::VectorXd solveSystem(const LinearSystem& system, SolveStats* stats = nullptr, const SolveOptions& options = {});
 
 /// assemble() + solveSystem() + expand(): the P1 solution at every vertex of `mesh`.
 PoissonSolution solvePoisson(const Mesh2& mesh, const PoissonProblem& problem, const SolveOptions& options = {});
+
+/// solvePoisson() with a factorisation kept across calls: when `factor` holds one of the
+/// assembled A (bitwise: same mesh, κ and Dirichlet vertices, as the unit-load dual of the
+/// problem last solved), only the triangular solves run (stats: orderingSeconds, symbolic and
+/// numeric 0, the counts of the kept factor); otherwise A is factorised and `factor` replaced.
+/// Same u, bit for bit, as solvePoisson(mesh, problem, options).
+PoissonSolution solvePoisson(const Mesh2& mesh, const PoissonProblem& problem, const SolveOptions& options,
+                             std::unique_ptr<Factorisation>& factor);
 
 }  // namespace ablmg::fem

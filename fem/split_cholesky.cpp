@@ -38,9 +38,7 @@ struct Side {
   cholmod_common c{};
   cholmod_factor* L = nullptr;
   Eigen::MatrixXd T;  ///< trailing n_s × n_s block of the factor (lower; upper part 0)
-  Eigen::MatrixXd P;  ///< T Tᵀ (lower part)
-  Eigen::VectorXd y;  ///< forward solution of the side's unknowns
-  Eigen::VectorXd u;  ///< T z (= −L_3k y_k) after the forward solve
+  Eigen::MatrixXd P;  ///< T Tᵀ (lower part; freed once S is formed)
 
   Side() { cholmod_start(&c); }
   ~Side() {
@@ -253,67 +251,110 @@ Eigen::MatrixXd separatorFactor(const Side (&side)[2]) {
 
 }  // namespace
 
-Eigen::VectorXd splitCholeskySolve(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order,
-                                   const std::vector<int>& position, int lower, int upper, const Eigen::VectorXd& b,
-                                   SplitCholeskyStats* stats) {
-  const int n = int(A.rows()), sepFirst = lower + upper, ns = n - sepFirst;
-  ABLMG_REQUIRE(
-      lower >= 1 && upper >= 1 && ns >= 1 && int(order.size()) == n && int(position.size()) == n && b.size() == n,
-      "splitCholeskySolve: sides " << lower << " + " << upper << " of " << n << " unknowns");
-  fixBlasThreads();
-  const bool parallel = omp_get_max_threads() > 1 && !omp_in_parallel();
+struct SplitCholesky::Impl {
+  std::vector<int> order;
+  int n = 0, sepFirst = 0, ns = 0;
+  bool parallel = false;
   Side side[2];
+  Eigen::MatrixXd L33;
+};
+
+SplitCholesky::SplitCholesky(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order,
+                             const std::vector<int>& position, int lower, int upper, SplitCholeskyStats* stats)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& f = *impl_;
+  f.n = int(A.rows());
+  f.sepFirst = lower + upper;
+  f.ns = f.n - f.sepFirst;
+  ABLMG_REQUIRE(lower >= 1 && upper >= 1 && f.ns >= 1 && int(order.size()) == f.n && int(position.size()) == f.n,
+                "splitCholeskySolve: sides " << lower << " + " << upper << " of " << f.n << " unknowns");
+  f.order = order;
+  fixBlasThreads();
+  f.parallel = omp_get_max_threads() > 1 && !omp_in_parallel();
+  Side(&side)[2] = f.side;
   side[0].count = lower;
   side[1].first = lower;
   side[1].count = upper;
   Stopwatch watch;
-  onBothSides(parallel, [&](int k) {
-    buildSideMatrix(side[k], A, order, position, sepFirst);
+  onBothSides(f.parallel, [&](int k) {
+    buildSideMatrix(side[k], A, order, position, f.sepFirst);
     analyseSide(side[k]);
   });
   const double tSymbolic = watch.lap();
-  onBothSides(parallel, [&](int k) { factoriseSide(side[k]); });
-  Eigen::MatrixXd L33 = separatorFactor(side);
-  const double tNumeric = watch.lap();
+  onBothSides(f.parallel, [&](int k) { factoriseSide(side[k]); });
+  f.L33 = separatorFactor(side);
+  for (Side& s : side) {  // the solves need T and the factor only
+    s.P.resize(0, 0);
+    Eigen::SparseMatrix<double>().swap(s.M);
+  }
+  if (stats) {
+    stats->symbolicSeconds = tSymbolic;
+    stats->numericSeconds = watch.seconds();
+    const double ns = f.ns, dense = 0.5 * ns * (ns + 1), cube = ns * ns * ns;
+    stats->factorNonZeros = side[0].c.lnz + side[1].c.lnz - dense;
+    stats->factorFlops = side[0].c.fl + side[1].c.fl + cube;  // 2 × T Tᵀ + chol(S): n_s³/3 each
+  }
+}
+
+SplitCholesky::~SplitCholesky() {
+  // Each side's factor (≈ 0.4 GB at 10⁶ unknowns) goes back on its own thread: returning its
+  // pages costs ≈ 0.03 s CPU per side, which the calling thread alone would pay.
+  if (impl_) {
+    try {
+      onBothSides(impl_->parallel, [&](int k) { impl_->side[k].release(); });
+    } catch (...) {  // release() does not throw; the side's destructor frees what is left
+    }
+  }
+}
+
+Eigen::VectorXd SplitCholesky::solve(const Eigen::VectorXd& b) {
+  Impl& f = *impl_;
+  const int n = f.n, ns = f.ns, sepFirst = f.sepFirst;
+  const std::vector<int>& order = f.order;
+  ABLMG_REQUIRE(b.size() == n,
+                "splitCholeskySolve: right-hand side of " << b.size() << " entries for " << n << " unknowns");
+  Side(&side)[2] = f.side;
   // Forward: side k solves L⁽ᵏ⁾ [y_k; z_k] = [b_k; 0], so that L_3k y_k = −T_k z_k.
   const int one = 1;
-  onBothSides(parallel, [&](int k) {
+  Eigen::VectorXd y[2], u[2];
+  onBothSides(f.parallel, [&](int k) {
     Side& s = side[k];
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(s.count + ns);
     for (int j = 0; j < s.count; ++j) rhs[j] = b[order[std::size_t(s.first + j)]];
     const Eigen::VectorXd yz = solveSide(s, CHOLMOD_L, rhs);
-    s.y = yz.head(s.count);
-    s.u = yz.tail(ns);
-    dtrmv_("L", "N", "N", &ns, s.T.data(), &ns, s.u.data(), &one, 1, 1, 1);
+    y[k] = yz.head(s.count);
+    u[k] = yz.tail(ns);
+    dtrmv_("L", "N", "N", &ns, s.T.data(), &ns, u[k].data(), &one, 1, 1, 1);
   });
   // Separator: L₃₃ y₃ = b₃ − L₃₁y₁ − L₃₂y₂, L₃₃ᵀ x₃ = y₃.
   Eigen::VectorXd x3(ns);
-  for (int j = 0; j < ns; ++j) x3[j] = b[order[std::size_t(sepFirst + j)]] + side[0].u[j] + side[1].u[j];
-  dtrsv_("L", "N", "N", &ns, L33.data(), &ns, x3.data(), &one, 1, 1, 1);
-  dtrsv_("L", "T", "N", &ns, L33.data(), &ns, x3.data(), &one, 1, 1, 1);
+  for (int j = 0; j < ns; ++j) x3[j] = b[order[std::size_t(sepFirst + j)]] + u[0][j] + u[1][j];
+  dtrsv_("L", "N", "N", &ns, f.L33.data(), &ns, x3.data(), &one, 1, 1, 1);
+  dtrsv_("L", "T", "N", &ns, f.L33.data(), &ns, x3.data(), &one, 1, 1, 1);
   // Backward: side k solves L⁽ᵏ⁾ᵀ [x_k; q] = [y_k; T_kᵀ x₃] (then q = x₃, unused).
   Eigen::VectorXd x(n);
   for (int j = 0; j < ns; ++j) x[order[std::size_t(sepFirst + j)]] = x3[j];
-  onBothSides(parallel, [&](int k) {
+  onBothSides(f.parallel, [&](int k) {
     Side& s = side[k];
     Eigen::VectorXd rhs(s.count + ns);
-    rhs.head(s.count) = s.y;
+    rhs.head(s.count) = y[k];
     rhs.tail(ns) = x3;
     dtrmv_("L", "T", "N", &ns, s.T.data(), &ns, rhs.data() + s.count, &one, 1, 1, 1);
     const Eigen::VectorXd xq = solveSide(s, CHOLMOD_Lt, rhs);
     for (int j = 0; j < s.count; ++j) x[order[std::size_t(s.first + j)]] = xq[j];
-    // Each side's factor (≈ 0.4 GB at 10⁶ unknowns) goes back on its own thread: returning
-    // its pages costs ≈ 0.03 s CPU per side, which the calling thread alone paid before.
-    s.release();
   });
-  if (stats) {
-    stats->symbolicSeconds = tSymbolic;
-    stats->numericSeconds = tNumeric;
-    stats->solveSeconds = watch.seconds();
-    const double dense = 0.5 * double(ns) * double(ns + 1), cube = double(ns) * double(ns) * double(ns);
-    stats->factorNonZeros = side[0].c.lnz + side[1].c.lnz - dense;
-    stats->factorFlops = side[0].c.fl + side[1].c.fl + cube;  // 2 × T Tᵀ + chol(S): n_s³/3 each
-  }
+  return x;
+}
+
+Eigen::VectorXd splitCholeskySolve(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order,
+                                   const std::vector<int>& position, int lower, int upper, const Eigen::VectorXd& b,
+                                   SplitCholeskyStats* stats) {
+  ABLMG_REQUIRE(b.size() == A.rows(),
+                "splitCholeskySolve: right-hand side of " << b.size() << " entries for " << A.rows() << " unknowns");
+  SplitCholesky factor(A, order, position, lower, upper, stats);
+  const Stopwatch watch;
+  Eigen::VectorXd x = factor.solve(b);
+  if (stats) stats->solveSeconds = watch.seconds();
   return x;
 }
 

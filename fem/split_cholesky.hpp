@@ -21,6 +21,7 @@
 /// order, so x is bitwise the same for any OMP_NUM_THREADS. InputError if M is not SPD.
 #include <Eigen/Sparse>
 
+#include <memory>
 #include <vector>
 
 namespace ablmg::fem {
@@ -33,10 +34,30 @@ struct SplitCholeskyStats {
   double factorFlops = 0;      ///< flops done (both sides' CHOLMOD counts + forming S + chol(S))
 };
 
-/// Solves A x = b. `A`: n × n SPD (both halves stored, compressed); `order`: a permutation
-/// (order[k] = the unknown placed k-th) whose first n₁ = `lower` and next n₂ = `upper`
-/// unknowns are the two sides of a cut (no entry of A joins them), the rest its separator
-/// (n₁, n₂ ≥ 1, n_s = n − n₁ − n₂ ≥ 1); `position` its inverse. Returns x in A's numbering.
+/// The factorisation of A in the order of a cut, kept for any number of right-hand sides.
+/// `A`: n × n SPD (both halves stored, compressed); `order`: a permutation (order[k] = the
+/// unknown placed k-th) whose first n₁ = `lower` and next n₂ = `upper` unknowns are the two
+/// sides of a cut (no entry of A joins them), the rest its separator (n₁, n₂ ≥ 1,
+/// n_s = n − n₁ − n₂ ≥ 1); `position` its inverse. Both are copied. The constructor
+/// factorises (`stats`: symbolic, numeric and the counts); InputError if A is not SPD.
+class SplitCholesky {
+ public:
+  SplitCholesky(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order, const std::vector<int>& position,
+                int lower, int upper, SplitCholeskyStats* stats = nullptr);
+  ~SplitCholesky();  ///< each side's factor is freed on its own thread
+  SplitCholesky(const SplitCholesky&) = delete;
+  SplitCholesky& operator=(const SplitCholesky&) = delete;
+
+  /// x with A x = b, in A's numbering (b: n entries). The same bits for any thread count.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// SplitCholesky(A, …) then solve(b): x with A x = b in A's numbering (stats->solveSeconds:
+/// the triangular solves).
 Eigen::VectorXd splitCholeskySolve(const Eigen::SparseMatrix<double>& A, const std::vector<int>& order,
                                    const std::vector<int>& position, int lower, int upper, const Eigen::VectorXd& b,
                                    SplitCholeskyStats* stats = nullptr);

@@ -398,6 +398,7 @@ class LatticeGrower {
     grid_.clearIncremental(int(capacity));
     pos_.reserve(capacity);
     ms_.reserve(capacity);
+    triangles_.reserve(capacity);
     links_.reserve(capacity);
     queue_.reserve(capacity);
     for (int k = 0; k < 6; ++k)
@@ -409,15 +410,19 @@ class LatticeGrower {
     return add(p, m);
   }
   /// Takes point c (metric m) if it passes the tests: its id, else −1.
-  int take(const Vec2& c, const Metric2& m) { return acceptable(c, m) ? add(c, m) : -1; }
+  /// `triangle`: the background triangle holding c (−1: unknown), where its lattice row is read.
+  int take(const Vec2& c, const Metric2& m, int triangle = -1) { return acceptable(c, m) ? add(c, m, triangle) : -1; }
   /// Takes point c (metric m) if it passes the tests, and grows the lattice from it.
-  void seed(const Vec2& c, const Metric2& m) {
-    const int id = take(c, m);
+  void seed(const Vec2& c, const Metric2& m, int triangle = -1) {
+    const int id = take(c, m, triangle);
     if (id < 0) return;
     queue_.assign(1, id);
     grow();
   }
-  void seed(const Vec2& c) { seed(c, metricAt(c)); }
+  void seed(const Vec2& c) {
+    const Metric2 m = metricAt(c);
+    seed(c, m, hint_);
+  }
   /// Grows from the given nodes (ids of this grower) first, then from what they add.
   void growFrom(std::vector<int> ids) {
     queue_ = std::move(ids);
@@ -432,6 +437,7 @@ class LatticeGrower {
   void release() {
     pos_ = {};
     ms_ = {};
+    triangles_ = {};
     links_ = {};
     queue_ = {};
     grid_ = BucketGrid();
@@ -504,14 +510,20 @@ class LatticeGrower {
     one(links_[std::size_t(a)], b);
     one(links_[std::size_t(b)], a);
   }
-  int add(const Vec2& c, const Metric2& m) {
+  int add(const Vec2& c, const Metric2& m, int triangle = -1) {
     const int id = int(pos_.size());
     pos_.push_back(c);
     ms_.push_back(m);
+    triangles_.push_back(triangle);
     links_.emplace_back();
     links_.back().fill(-1);
     grid_.insert(id, c);
     return id;
+  }
+  Vec2 latticeRowAt(int p) {
+    const int t = triangles_[std::size_t(p)];
+    if (t >= 0) rowHint_ = t;
+    return metric_.latticeRow(pos_[std::size_t(p)], rowHint_);
   }
   void grow() {
     for (std::size_t head = 0; head < queue_.size(); ++head) {
@@ -519,12 +531,12 @@ class LatticeGrower {
       const Vec2 x = pos_[p];
       const Metric2 m = ms_[p];
       const MetricEigen e = m.eigen();
-      const Eigen::Matrix2d s =
-          latticeMap(e, o_.orientation, o_.alignRatio, rows_ ? metric_.latticeRow(x, rowHint_) : Vec2::Zero());
+      const Eigen::Matrix2d s = latticeMap(e, o_.orientation, o_.alignRatio, rows_ ? latticeRowAt(p) : Vec2::Zero());
       for (const Vec2& d : dirs_) {
         const Vec2 c = x + s * d;
         if (acceptable(c, m, p)) {
-          const int k = add(c, metricAt(c));
+          const Metric2 mc = metricAt(c);
+          const int k = add(c, mc, hint_);
           queue_.push_back(k);
           link(p, k);
         } else if (blocker_ >= 0) {
@@ -548,6 +560,10 @@ class LatticeGrower {
   static constexpr int kLinks = 6;
   std::vector<std::array<int, kLinks>> links_;
   std::vector<int> queue_;
+  /// Per node, the background triangle its metric was interpolated in (−1: context, warm seed,
+  /// constant field): its lattice row is read there, where a walk from the previous node's
+  /// triangle crossed hundreds of thin triangles of a layer (1.2·10⁴ instructions per row).
+  std::vector<int> triangles_;
   int hint_ = -1, rowHint_ = -1, firstOwn_ = 0, blocker_ = -1;
   bool tooTall_ = false;
 };

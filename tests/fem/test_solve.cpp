@@ -260,3 +260,54 @@ TEST(Solve, SplitFactorisationBitwiseSameOnOneAndTwoThreads) {
   omp_set_num_threads(saved);
   EXPECT_TRUE(one == two);
 }
+
+// A kept factorisation solves other right-hand sides with the same bits as a fresh solve, on
+// the split path, the whole one and CHOLMOD's own ordering; the unit-load dual's solve reuses
+// the primal's factor (no ordering or factorisation), and a system with another matrix is
+// factorised anew.
+TEST(Solve, KeptFactorisationSolvesFurtherRightHandSides) {
+  const Mesh2 m = unitSquareMesh(70, 0.2, 6);
+  const LinearSystem sys = assemble(m, makeProblem("wavefront").poisson());
+  const Eigen::VectorXd b2 = Eigen::VectorXd::LinSpaced(sys.A.rows(), -1.0, 2.0);
+  LinearSystem other = sys;
+  other.b = b2;
+  SolveOptions split, whole, cholmod;
+  split.splitMinUnknowns = 1000;  // the split path at this size
+  ASSERT_GE(sys.A.rows(), split.splitMinUnknowns);
+  whole.splitMinUnknowns = std::numeric_limits<int>::max();
+  cholmod.ordering = Ordering::Cholmod;
+  EXPECT_FALSE(solveSystem(sys, nullptr, split) == solveSystem(sys, nullptr, whole));  // other paths ran
+  for (const SolveOptions& o : {split, whole, cholmod}) {
+    Factorisation f(sys, o);
+    EXPECT_TRUE(f.solve(sys.b) == solveSystem(sys, nullptr, o));
+    EXPECT_TRUE(f.solve(b2) == solveSystem(other, nullptr, o));
+    EXPECT_TRUE(f.sameMatrix(sys.A));
+    EXPECT_THROW(f.solve(Eigen::VectorXd::Ones(3)), InputError);
+  }
+  PoissonProblem primal;
+  primal.kappa = 2.0;
+  primal.f = ScalarFn([](double x, double y) { return std::sin(3 * x) + y; });
+  primal.setDirichletEverywhere(ScalarFn(linearU));
+  PoissonProblem dual = primal;
+  dual.f = 1.0;
+  dual.setDirichletEverywhere(0.0);
+  std::unique_ptr<Factorisation> factor;
+  const PoissonSolution u = solvePoisson(m, primal, {}, factor);
+  ASSERT_TRUE(factor);
+  const Factorisation* kept = factor.get();
+  const PoissonSolution z = solvePoisson(m, dual, {}, factor);
+  EXPECT_EQ(factor.get(), kept);
+  EXPECT_EQ(z.stats.orderingSeconds, 0.0);
+  EXPECT_EQ(z.stats.numericSeconds, 0.0);
+  EXPECT_EQ(z.stats.factorFlops, u.stats.factorFlops);
+  EXPECT_LT(z.stats.residual, 1e-12);
+  EXPECT_TRUE(u.u == solvePoisson(m, primal).u);
+  EXPECT_TRUE(z.u == solvePoisson(m, dual).u);
+  PoissonProblem stiffer = dual;
+  stiffer.kappa = 3.0;
+  const PoissonSolution w = solvePoisson(m, stiffer, {}, factor);
+  EXPECT_GT(w.stats.factorFlops, 0.0);
+  EXPECT_TRUE(factor->sameMatrix(assemble(m, stiffer).A));
+  EXPECT_FALSE(factor->sameMatrix(sys.A));
+  EXPECT_TRUE(w.u == solvePoisson(m, stiffer).u);
+}
