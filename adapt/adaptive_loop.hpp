@@ -237,22 +237,11 @@ struct AdaptOptions {
   /// there directly, with the passes of the first size it skips (≤ 1: off, the prediction only
   /// lowers the next size). The sizes in between only grew the mesh towards N: the metric
   /// recovered at N/16 already carries the grading and the features (the corner fits its own
-  /// grading, gradeSingularCorners). Measured on `ablmg adapt --vertices 2N --stop-h1 E`
-  /// (examples/compare_freefem/run.sh's time to accuracy, N and E FreeFem++'s final to 10⁵,
-  /// Σ N_k of the run in 10⁴, stopJump 0 → 4 → 8 → 16 → 100): wave front 16.2 → 11.6 → 9.4 → 8.5
-  /// → 8.7, steep front 14.3 → 10.7 → 9.2 → 9.0 → 10.9, peak 12.8 → 9.3 → 7.8 → 7.1 → 7.6,
-  /// L-shape 11.6 → 8.6 → 7.1 → 6.4 → 6.4, layer 7.3 → 7.3 → 7.2 → 7.2 → 9.5, 5π/4 11.8 → 8.7 →
-  /// 7.1 → 6.4 → 6.3, 7π/4 17.3 → 12.8 → 10.6 → 9.6 → 9.6, slit 12.9 → 9.6 → 8.0 → 7.3 → 7.3,
-  /// line singularity 19.9 → 14.4 → 12.0 → 11.2 → 12.3, multiple 15.9 → 11.6 → 9.9 → 9.2 → 10.9;
-  /// every run reached E; CPU s (user + sys, 2 threads, machine at load 6–13, ±10 %) 0 → 16: the
-  /// slit 3.75 → 1.74, L-shape 3.11 → 1.55, 5π/4 4.01 → 2.02, 7π/4 4.89 → 2.87, peak 5.06 → 2.84,
-  /// wave front 5.81 → 3.68, steep front 7.53 → 4.47, line singularity 6.19 → 3.49, multiple 8.71
-  /// → 4.17, layer 3.03 → 2.74. At 16 the last mesh is larger than with 0 (the errors at N/16
-  /// predict conservatively: the rate used is the shallower of the fitted and the optimal one):
-  /// 3–7 % on the corners, the wave front and the peak, 15–50 % on the line singularity,
-  /// multiple, the steep front and the layer, whose H1 then ends at 0.67–0.90 E (the others
-  /// 0.93–0.94 E); at 100 the jumps start from 10³ vertices and Σ N grows again (layer 9.5,
-  /// steep front 10.9, multiple 10.9).
+  /// grading, gradeSingularCorners). On the ten problems' runs to FreeFem++'s final H1 error
+  /// (`ablmg adapt --vertices 2N --stop-h1 E`), 16 cuts Σ N_k of the run by 25–45 % on nine (the
+  /// layer unchanged) and every run still reaches E; the price is a last mesh 3–50 % larger than
+  /// the target needs, as the prediction uses the shallower of the fitted and optimal rates.
+  /// 4, 8 and 100 measured against it: docs/experiments.md, "Jumping to the predicted size".
   double stopJump = 16;
   /// Warm start: the bubbles of mesh_{k+1} start from the interior vertices of mesh_k where
   /// they fit the new metric (PlacementOptions::warmStart), the lattice filling the rest.
