@@ -5,6 +5,7 @@
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
+#include "ablmg/core/predicates.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -28,8 +29,12 @@ PointKey keyOf(const Vec2& p) { return {std::bit_cast<std::uint64_t>(p.x()), std
 /// The ref of the cuts that split a slit's subdomain (never a file's ref: dropped after gluing).
 constexpr int kCutRef = std::numeric_limits<int>::min() + 1;
 
-/// Slits, given in a mesh as a zero-width gap: boundary vertices at the same point as another
-/// boundary vertex are lip vertices. Returns the flags (per vertex) of the lip vertices.
+/// Slits, given in a mesh as a zero-width gap: a boundary vertex at the same point as another
+/// boundary vertex, or exactly on a boundary edge it is no end of, is a lip vertex (the two lips
+/// of a slit need not share their points: a remesher may discretize each lip on its own). A
+/// valid boundary touches itself nowhere else, so no other vertex is flagged. The edges are
+/// bucketed on a grid of about one cell per edge, each vertex tested against its cell's edges
+/// with the exact orientation predicate. Returns the flags (per vertex) of the lip vertices.
 std::vector<char> lipVertices(const Mesh2& mesh) {
   std::map<PointKey, int> seen;
   std::vector<char> lip(mesh.vertices.size(), 0);
@@ -38,6 +43,35 @@ std::vector<char> lipVertices(const Mesh2& mesh) {
       const auto [it, added] = seen.emplace(keyOf(mesh.vertices[std::size_t(v)]), v);
       if (!added && it->second != v) lip[std::size_t(v)] = lip[std::size_t(it->second)] = 1;
     }
+  if (mesh.boundaryEdges.empty()) return lip;
+  const auto at = [&](int v) { return mesh.vertices[std::size_t(v)]; };
+  Vec2 lo = at(mesh.boundaryEdges[0].a), hi = lo;
+  for (const auto& e : mesh.boundaryEdges)
+    for (int v : {e.a, e.b}) lo = lo.cwiseMin(at(v)), hi = hi.cwiseMax(at(v));
+  const int cells = std::clamp(int(std::sqrt(double(mesh.boundaryEdges.size()))), 1, 1024);
+  const Vec2 size = (hi - lo).cwiseMax(Vec2::Constant(1e-300)) / double(cells);
+  const auto cell = [&](double x, double lo1, double h) {
+    return int(std::clamp(std::floor((x - lo1) / h), 0.0, double(cells - 1)));
+  };
+  std::vector<std::vector<int>> bucket(std::size_t(cells) * std::size_t(cells));
+  for (std::size_t k = 0; k < mesh.boundaryEdges.size(); ++k) {
+    const Vec2 a = at(mesh.boundaryEdges[k].a), b = at(mesh.boundaryEdges[k].b);
+    const Vec2 l = a.cwiseMin(b), h = a.cwiseMax(b);
+    for (int j = cell(l.y(), lo.y(), size.y()); j <= cell(h.y(), lo.y(), size.y()); ++j)
+      for (int i = cell(l.x(), lo.x(), size.x()); i <= cell(h.x(), lo.x(), size.x()); ++i)
+        bucket[std::size_t(j) * std::size_t(cells) + std::size_t(i)].push_back(int(k));
+  }
+  for (const auto& [key, v] : seen) {
+    const Vec2 p = at(v);
+    for (const int k : bucket[std::size_t(cell(p.y(), lo.y(), size.y())) * std::size_t(cells) +
+                              std::size_t(cell(p.x(), lo.x(), size.x()))]) {
+      const auto& e = mesh.boundaryEdges[std::size_t(k)];
+      const Vec2 a = at(e.a), b = at(e.b);
+      if (p == a || p == b || orient2d(a, b, p) != 0 || (p - a).dot(b - a) <= 0 || (p - b).dot(a - b) <= 0) continue;
+      lip[std::size_t(v)] = 1;
+      break;
+    }
+  }
   return lip;
 }
 

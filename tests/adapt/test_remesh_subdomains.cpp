@@ -327,14 +327,17 @@ namespace {
 
 /// (−1, 1)² with the slit [0, 1] × {0} (Mitchell's reentrant corner with ω = 2π): a (2m)² grid
 /// whose vertices on the slit (x > 0, y = 0) are doubled, the lower cells using the twins; a
-/// zero-width gap between two boundary edge chains. Refs from the reader (0).
-Mesh2 slitSquare(int m) {
+/// zero-width gap between two boundary edge chains. Refs from the reader (0). With `shift`, the
+/// twins but the last (at the corner (1, 0)) move by shift/m along the slit: the lips then share
+/// no point, as when each lip was discretized on its own.
+Mesh2 slitSquare(int m, double shift = 0) {
   const int n = 2 * m, nv = (n + 1) * (n + 1);
   std::ostringstream os;
   os << "MeshVersionFormatted 2\nDimension 2\nVertices\n" << nv + m << "\n";
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i) os << double(i - m) / m << " " << double(j - m) / m << " 0\n";
-  for (int i = m + 1; i <= n; ++i) os << double(i - m) / m << " 0 0\n";  // twins, ids nv + (i − m)
+  for (int i = m + 1; i <= n; ++i)  // twins, ids nv + (i − m)
+    os << (double(i - m) + (i < n ? shift : 0.0)) / m << " 0 0\n";
   const auto id = [&](int i, int j, bool lower) {
     return j == m && i > m && lower ? nv + (i - m) : j * (n + 1) + i + 1;
   };
@@ -351,8 +354,10 @@ Mesh2 slitSquare(int m) {
 
 }  // namespace
 
-TEST(RemeshSubdomains, SlitLipsStayApart) {
-  const Mesh2 in = slitSquare(4);
+class SlitLips : public ::testing::TestWithParam<double> {};
+
+TEST_P(SlitLips, StayApart) {
+  const Mesh2 in = slitSquare(4, GetParam());
   ASSERT_TRUE(in.validate(4.0).ok) << in.validate().firstProblem;
   ASSERT_TRUE(needsSubdomains(in));
   std::vector<Metric2> metric;  // finer towards the tip
@@ -389,6 +394,9 @@ TEST(RemeshSubdomains, SlitLipsStayApart) {
   for (const Vec2& v : r.mesh.vertices) tip = tip || v == Vec2(0, 0);
   EXPECT_TRUE(tip);
 }
+
+// lips sharing their points, and lips discretized apart (an adapted slit mesh read back)
+INSTANTIATE_TEST_SUITE_P(RemeshSubdomains, SlitLips, ::testing::Values(0.0, 0.3));
 
 TEST(RemeshSubdomains, TheLoopsOverloadKeepsSubdomains) {
   // remesh(domain, mesh, metric), the adaptive loop's call: a mesh with subdomains keeps them.
