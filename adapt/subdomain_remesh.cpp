@@ -50,8 +50,9 @@ std::vector<char> lipVertices(const Mesh2& mesh) {
     for (int v : {e.a, e.b}) lo = lo.cwiseMin(at(v)), hi = hi.cwiseMax(at(v));
   const int cells = std::clamp(int(std::sqrt(double(mesh.boundaryEdges.size()))), 1, 1024);
   const Vec2 size = (hi - lo).cwiseMax(Vec2::Constant(1e-300)) / double(cells);
-  const auto cell = [&](double x, double lo1, double h) {
-    return int(std::clamp(std::floor((x - lo1) / h), 0.0, double(cells - 1)));
+  const auto cell = [&](double x, double lo1, double h) {  // clamped as a double: no overflow, NaN to 0
+    const double c = std::floor((x - lo1) / h);
+    return !(c >= 0) ? 0 : c >= double(cells - 1) ? cells - 1 : int(c);
   };
   std::vector<std::vector<int>> bucket(std::size_t(cells) * std::size_t(cells));
   for (std::size_t k = 0; k < mesh.boundaryEdges.size(); ++k) {
