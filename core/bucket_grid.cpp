@@ -1,5 +1,6 @@
 #include "ablmg/core/bucket_grid.hpp"
 
+#include "ablmg/core/counting_sort.hpp"
 #include "ablmg/core/error.hpp"
 
 #include <omp.h>
@@ -21,9 +22,8 @@ void BucketGrid::build(std::span<const Vec2> points) {
   const int nc = numCells(), n = int(points.size());
   offsets_.assign(std::size_t(nc) + 1, 0);
   ids_.resize(points.size());
-  // A counting sort in contiguous blocks of points per thread: each thread counts its block's
-  // points per cell, then fills its own slots, which follow those of the blocks before it, so
-  // every cell lists its ids ascending, as the serial sort does.
+  // A counting sort in contiguous blocks of points per thread (core/counting_sort.hpp): every
+  // cell lists its ids ascending, as the serial sort does.
   constexpr int kParallelPoints = 1 << 15;
   const bool parallel = n >= kParallelPoints;
   const int threads = parallel ? omp_get_max_threads() : 1;
@@ -35,23 +35,7 @@ void BucketGrid::build(std::span<const Vec2> points) {
     const int lo = int(long(n) * t / nt), hi = int(long(n) * (t + 1) / nt);
     int* mine = slot.data() + std::size_t(t) * std::size_t(nc);
     for (int i = lo; i < hi; ++i) ++mine[cellOfPoint[std::size_t(i)] = cellOf(points[std::size_t(i)])];
-#pragma omp barrier
-#pragma omp single
-    for (int c = 0; c < nc; ++c) {
-      int count = 0;
-      for (int u = 0; u < threads; ++u) count += slot[std::size_t(u) * std::size_t(nc) + std::size_t(c)];
-      offsets_[std::size_t(c) + 1] = offsets_[std::size_t(c)] + count;
-    }
-#pragma omp for schedule(static)
-    for (int c = 0; c < nc; ++c) {
-      int next = offsets_[std::size_t(c)];
-      for (int u = 0; u < threads; ++u) {
-        int& s = slot[std::size_t(u) * std::size_t(nc) + std::size_t(c)];
-        const int k = s;
-        s = next;
-        next += k;
-      }
-    }
+    countsToSlots(slot, offsets_);
     for (int i = lo; i < hi; ++i) ids_[std::size_t(mine[cellOfPoint[std::size_t(i)]]++)] = i;
   }
 }

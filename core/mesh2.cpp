@@ -1,5 +1,6 @@
 #include "ablmg/core/mesh2.hpp"
 
+#include "ablmg/core/counting_sort.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
 
@@ -91,24 +92,7 @@ HalfEdges halfEdges(const Mesh2& m) {
 #pragma omp for schedule(static)
     for (int t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) ++mine[bucket(lo(t, k))];
-#pragma omp single
-    {
-      for (std::size_t b = 0; b < buckets; ++b) {
-        int n = 0;
-        for (int i = 0; i < threads; ++i) n += slot[std::size_t(i) * buckets + b];
-        start[b + 1] = start[b] + n;
-      }
-    }
-#pragma omp for schedule(static)
-    for (int b = 0; b < int(buckets); ++b) {
-      int next = start[std::size_t(b)];
-      for (int i = 0; i < threads; ++i) {
-        int& s = slot[std::size_t(i) * buckets + std::size_t(b)];
-        const int n = s;
-        s = next;
-        next += n;
-      }
-    }
+    countsToSlots(slot, start);
 #pragma omp for schedule(static)
     for (int t = 0; t < nt; ++t) {
       const auto& tr = m.triangles[std::size_t(t)];

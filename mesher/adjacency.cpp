@@ -2,6 +2,7 @@
 #include "ablmg/mesher/parallel_threshold.hpp"
 
 #include "ablmg/core/bucket_grid.hpp"
+#include "ablmg/core/counting_sort.hpp"
 #include "ablmg/core/parallel_failure.hpp"
 #include "ablmg/core/point_box_tree.hpp"
 
@@ -132,9 +133,8 @@ AdjacencyLists blockedCsr(int n, RowFn&& rowFn) {
 }
 
 /// The transpose of the compact `a` (row j lists every i whose row holds j), rows sorted: a counting sort
-/// in contiguous blocks of rows per thread, each thread counting its block's entries per
-/// column and then filling its own slots, which follow those of the blocks before it (lower
-/// rows), so a column's rows come out ascending, as from the serial sort.
+/// in contiguous blocks of rows per thread (core/counting_sort.hpp), so a column's rows come out
+/// ascending, as from the serial sort.
 AdjacencyLists transposed(const AdjacencyLists& a) {
   const int n = a.size();
   const bool parallel = n >= kMinParallelItems;
@@ -150,23 +150,7 @@ AdjacencyLists transposed(const AdjacencyLists& a) {
     int* mine = slot.data() + std::size_t(t) * std::size_t(n);
     for (int i = lo; i < hi; ++i)
       for (int j : a.neighbours(i)) ++mine[j];
-#pragma omp barrier
-#pragma omp single
-    for (int j = 0; j < n; ++j) {
-      int count = 0;
-      for (int u = 0; u < threads; ++u) count += slot[std::size_t(u) * std::size_t(n) + std::size_t(j)];
-      tr.offsets[std::size_t(j) + 1] = tr.offsets[std::size_t(j)] + count;
-    }
-#pragma omp for schedule(static)
-    for (int j = 0; j < n; ++j) {
-      int next = tr.offsets[std::size_t(j)];
-      for (int u = 0; u < threads; ++u) {
-        int& s = slot[std::size_t(u) * std::size_t(n) + std::size_t(j)];
-        const int c = s;
-        s = next;
-        next += c;
-      }
-    }
+    countsToSlots(slot, tr.offsets);
     for (int i = lo; i < hi; ++i)
       for (int j : a.neighbours(i)) tr.ids[std::size_t(mine[j]++)] = i;
   }
