@@ -3,6 +3,7 @@
 // interface), from loops whose interface pieces are discretized once for both sides and fixed;
 // the meshes are then glued at those shared points.
 #include "ablmg/adapt/remesh.hpp"
+#include "ablmg/core/bucket_grid.hpp"
 #include "ablmg/core/domain_from_mesh.hpp"
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/predicates.hpp"
@@ -33,7 +34,7 @@ constexpr int kCutRef = std::numeric_limits<int>::min() + 1;
 /// boundary vertex, or exactly on a boundary edge it is no end of, is a lip vertex (the two lips
 /// of a slit need not share their points: a remesher may discretize each lip on its own). A
 /// valid boundary touches itself nowhere else, so no other vertex is flagged. The edges are
-/// bucketed on a grid of about one cell per edge, each vertex tested against its cell's edges
+/// bucketed (BucketGrid, about one cell per edge), each vertex tested against its cell's edges
 /// with the exact orientation predicate. Returns the flags (per vertex) of the lip vertices.
 std::vector<char> lipVertices(const Mesh2& mesh) {
   std::map<PointKey, int> seen;
@@ -48,24 +49,22 @@ std::vector<char> lipVertices(const Mesh2& mesh) {
   Vec2 lo = at(mesh.boundaryEdges[0].a), hi = lo;
   for (const auto& e : mesh.boundaryEdges)
     for (int v : {e.a, e.b}) lo = lo.cwiseMin(at(v)), hi = hi.cwiseMax(at(v));
-  const int cells = std::clamp(int(std::sqrt(double(mesh.boundaryEdges.size()))), 1, 1024);
-  const Vec2 size = (hi - lo).cwiseMax(Vec2::Constant(1e-300)) / double(cells);
-  const auto cell = [&](double x, double lo1, double h) {  // clamped as a double: no overflow, NaN to 0
-    const double c = std::floor((x - lo1) / h);
-    return !(c >= 0) ? 0 : c >= double(cells - 1) ? cells - 1 : int(c);
-  };
-  std::vector<std::vector<int>> bucket(std::size_t(cells) * std::size_t(cells));
+  const double extent = (hi - lo).maxCoeff();
+  if (!(extent > 0 && std::isfinite(extent))) return lip;  // one point, or coordinates no grid spans
+  const double edges = double(mesh.boundaryEdges.size());
+  BucketGrid grid(lo, hi, std::max(extent / std::sqrt(edges), std::numeric_limits<double>::min()),
+                  long(4 * edges) + 16);
+  std::vector<std::pair<int, int>> cellIds;  // (cell, edge) for every cell an edge's box covers
   for (std::size_t k = 0; k < mesh.boundaryEdges.size(); ++k) {
     const Vec2 a = at(mesh.boundaryEdges[k].a), b = at(mesh.boundaryEdges[k].b);
     const Vec2 l = a.cwiseMin(b), h = a.cwiseMax(b);
-    for (int j = cell(l.y(), lo.y(), size.y()); j <= cell(h.y(), lo.y(), size.y()); ++j)
-      for (int i = cell(l.x(), lo.x(), size.x()); i <= cell(h.x(), lo.x(), size.x()); ++i)
-        bucket[std::size_t(j) * std::size_t(cells) + std::size_t(i)].push_back(int(k));
+    for (int y = grid.cellY(l.y()); y <= grid.cellY(h.y()); ++y)
+      for (int x = grid.cellX(l.x()); x <= grid.cellX(h.x()); ++x) cellIds.push_back({y * grid.nx() + x, int(k)});
   }
+  grid.buildFromPairs(cellIds);
   for (const auto& [key, v] : seen) {
     const Vec2 p = at(v);
-    for (const int k : bucket[std::size_t(cell(p.y(), lo.y(), size.y())) * std::size_t(cells) +
-                              std::size_t(cell(p.x(), lo.x(), size.x()))]) {
+    for (const int k : grid.cell(grid.cellOf(p))) {
       const auto& e = mesh.boundaryEdges[std::size_t(k)];
       const Vec2 a = at(e.a), b = at(e.b);
       if (p == a || p == b || orient2d(a, b, p) != 0 || (p - a).dot(b - a) <= 0 || (p - b).dot(a - b) <= 0) continue;
