@@ -4,14 +4,25 @@
 ///
 /// Debian's CHOLMOD (SuiteSparse 5) is built with `num_threads(4)` on the small loops of its
 /// supernodal factorisation and solves (zeroing a supernode, scattering A into it, clearing
-/// the row map): one OpenMP team per supernode, whatever OMP_NUM_THREADS says. Those loops
-/// are memory-bound copies of a few thousand entries; on 2 cores the team costs more than the
-/// loop (under OMP_WAIT_POLICY=passive every team is a round of futex wake-ups: ≈ 1.5·10⁵
-/// per 10⁵-unknown solve), and on a loaded machine each waits for descheduled helpers.
-/// The scope sets the calling thread's max-active-levels ICV to 0 (a per-task value: other
-/// threads' parallel regions are unaffected), so every region CHOLMOD opens from this thread
-/// runs with a team of one; the destructor restores the previous value. The loops compute
-/// the same values either way: results are bitwise unchanged.
+/// the row map): one OpenMP region per supernode and per descendant, whatever OMP_NUM_THREADS
+/// says (5.3·10⁵ regions in a 10⁶-unknown factorisation). Those loops are memory-bound copies
+/// of a few thousand entries; on 2 cores a team costs more than the loop, and on a loaded
+/// machine each waits for descheduled helpers. So a CholmodScope does two things:
+///  - it sets the calling thread's max-active-levels ICV to 0 (a per-task value: other
+///    threads' parallel regions are unaffected), so every region CHOLMOD opens from this
+///    thread gets a team of one; the destructor restores the previous value;
+///  - while it lives on a thread that is in no parallel region (omp_get_level() == 0), the
+///    regions CHOLMOD opens run their body directly on that thread, without a team
+///    (fem/cholmod_threads.cpp replaces libgomp's entry point GOMP_parallel, which CHOLMOD
+///    calls, and forwards every other call to it). A team of one costs a team allocation
+///    and two futex system calls (libgomp wakes its barrier's waiters even when there are
+///    none): 1.05·10⁶ system calls in the 10⁶ factorisation, 0.7 s of its 1.9 s numeric phase
+///    on the 2-core benchmark machine (docs/benchmarks.md, "Solver ordering"). The body run
+///    alone is the team of one's work exactly: with no team omp_get_num_threads() is 1 and
+///    omp_get_thread_num() 0, so each worksharing loop takes all its iterations, and its
+///    barriers return at once. Inside any parallel region (level ≥ 1) the call goes to the
+///    runtime as before, since the body would then see the enclosing team's size.
+/// The loops compute the same values either way: results are bitwise unchanged.
 ///
 /// fixBlasThreads(): the one BLAS policy of every CHOLMOD factorisation and solve in fem/
 /// (solve.cpp, heat.cpp): OpenBLAS runs with kBlasThreads = 1 thread, whatever
@@ -67,13 +78,18 @@ inline void configureFactorisation(cholmod_common& c) {
 
 class CholmodScope {
  public:
-  CholmodScope() : saved_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
-  ~CholmodScope() { omp_set_max_active_levels(saved_); }
+  CholmodScope();
+  ~CholmodScope();
   CholmodScope(const CholmodScope&) = delete;
   CholmodScope& operator=(const CholmodScope&) = delete;
 
  private:
   int saved_;
 };
+
+/// How many OpenMP regions the calling thread has run without a team (inside a CholmodScope,
+/// in no parallel region) since it started: a test's and a benchmark's check that the
+/// shortcut above is in place (0 when the program's GOMP_parallel is libgomp's own).
+long teamlessRegionCount();
 
 }  // namespace ablmg::fem

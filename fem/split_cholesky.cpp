@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 // LAPACK / BLAS (Fortran interface; the trailing arguments are the hidden lengths of the
@@ -210,23 +212,32 @@ Eigen::VectorXd solveSide(Side& s, int sys, const Eigen::VectorXd& rhs) {
   return out;
 }
 
-/// Runs f(0) and f(1), on two threads when `parallel`; CHOLMOD's own OpenMP loops stay
-/// serial in both (fem/cholmod_threads.hpp). The error of side 0 wins over side 1's.
+/// Runs f(0) on the calling thread and f(1) on a thread of its own when `parallel` (else
+/// both on the calling thread), each inside a CholmodScope. The second side runs on a plain
+/// std::thread, not in an OpenMP team: a thread in no parallel region runs CHOLMOD's
+/// per-supernode OpenMP regions without a team (fem/cholmod_threads.hpp), where a team
+/// member would pay a nested team of one per region. The error of side 0 wins over side 1's.
 template <class F>
 void onBothSides(bool parallel, F&& f) {
   ParallelFailure failure;
-  const int saved = omp_get_max_active_levels();
-  omp_set_max_active_levels(1);  // our team active, CHOLMOD's teams inside it not
-#pragma omp parallel num_threads(2) if (parallel)
-  {
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    for (int k = t; k < 2; k += nt)
-      failure.run(k, [&] {
-        const CholmodScope serial;
-        f(k);
-      });
+  const auto side = [&](int k) {
+    failure.run(k, [&] {
+      const CholmodScope serial;
+      f(k);
+    });
+  };
+  std::thread other;
+  if (parallel) {
+    try {
+      other = std::thread(side, 1);
+    } catch (const std::system_error&) {  // no thread to be had: one side after the other
+    }
   }
-  omp_set_max_active_levels(saved);
+  side(0);
+  if (other.joinable())
+    other.join();
+  else
+    side(1);
   failure.rethrow();
 }
 

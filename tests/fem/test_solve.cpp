@@ -213,6 +213,31 @@ TEST(Solve, CholmodScopeRunsRegionsSeriallyAndRestoresTheLevel) {
   EXPECT_EQ(teamSize(), saved > 0 ? 4 : 1);
 }
 
+// CHOLMOD's OpenMP regions inside a CholmodScope on a thread in no parallel region run
+// without a team (fem/cholmod_threads.hpp); inside a parallel region they go to the runtime.
+// Both give the same bits, and the first path is the one a top-level solve takes.
+TEST(Solve, CholmodRegionsWithoutATeamGiveTheSameBits) {
+  const Mesh2 m = unitSquareMesh(220, 0.2, 5);  // split factorisation, supernodal sides
+  const PoissonProblem p = makeProblem("wavefront").poisson();
+  const long before = teamlessRegionCount();
+  const Eigen::VectorXd top = solvePoisson(m, p).u;
+  const long teamless = teamlessRegionCount() - before;
+  EXPECT_GT(teamless, 1000);  // the calling thread's side: a few regions per supernode
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(1);  // inside the region below: both sides on this thread
+  Eigen::VectorXd nested;
+  long nestedTeamless = -1;
+#pragma omp parallel num_threads(1)
+  {
+    const long start = teamlessRegionCount();
+    nested = solvePoisson(m, p).u;
+    nestedTeamless = teamlessRegionCount() - start;
+  }
+  omp_set_num_threads(saved);
+  EXPECT_EQ(nestedTeamless, 0);
+  EXPECT_TRUE(top == nested);
+}
+
 // Above splitMinUnknowns the two sides of the first cut are factorised apart
 // (fem/split_cholesky.hpp): the same solution as one factorisation, to rounding, with a
 // small residual, on a uniform grid (supernodal sides) and on a stretched one (simplicial).
