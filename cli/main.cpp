@@ -97,15 +97,23 @@ static void avoidBusyWaitingUnderLoad(char** argv) {
 /// the size of every mmapped block freed (up to 32 MB): past the first freed array of 10⁶
 /// triangles, every array of a remesh lives in the heap, where freed blocks between live ones
 /// stay resident. A fixed 4 MB threshold gives the large arrays back on free (the 10⁶-triangle
-/// refinement of bench_remesh.sh: peak 231–252 → 196–198 MB for ≈ 0.1 s more system time; 1 MB cost
-/// 0.8 CPU s of page faults). The user's GLIBC_TUNABLES still win: mallopt is skipped then.
+/// refinement of bench_remesh.sh: peak 231–252 → 196–198 MB; 1 MB cost 0.8 CPU s of page faults).
+/// The price is a fresh mapping, page faults included, for every large array: 1.8·10⁵ faults
+/// against 0.7·10⁵ in that refinement, 0.6–0.9 s of its 2.1–2.7 s on a virtual machine whose
+/// faults cost ≈ 6 µs. So only the commands that build one large mesh and exit (mesh, remesh,
+/// surface), where the peak is what a user runs out of, fix the threshold; the loops (adapt,
+/// transient), which allocate the same arrays again every cycle, and solve and stats keep
+/// glibc's own policy (the tanh layer's loop to 1.1·10⁵ vertices: 1.78·10⁵ → 0.4–0.5·10⁵ faults,
+/// 10.9 → 8.2–9.3 s wall, peak 115 → 132–144 MB). The user's GLIBC_TUNABLES still win: mallopt
+/// is skipped then.
 static void keepLargeArraysMapped() {
   if (std::getenv("GLIBC_TUNABLES")) return;
   mallopt(M_MMAP_THRESHOLD, 4 << 20);
 }
 
 int main(int argc, char** argv) {
-  keepLargeArraysMapped();
+  if (argc >= 2 && (!std::strcmp(argv[1], "mesh") || !std::strcmp(argv[1], "remesh") || !std::strcmp(argv[1], "surface")))
+    keepLargeArraysMapped();
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? std::cerr : std::cout);
     return argc < 2 ? 2 : 0;
