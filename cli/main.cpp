@@ -112,7 +112,8 @@ static void keepLargeArraysMapped() {
 }
 
 int main(int argc, char** argv) {
-  if (argc >= 2 && (!std::strcmp(argv[1], "mesh") || !std::strcmp(argv[1], "remesh") || !std::strcmp(argv[1], "surface")))
+  if (argc >= 2 &&
+      (!std::strcmp(argv[1], "mesh") || !std::strcmp(argv[1], "remesh") || !std::strcmp(argv[1], "surface")))
     keepLargeArraysMapped();
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     usage(argc < 2 ? std::cerr : std::cout);
