@@ -88,8 +88,8 @@ class CholmodScope {
 };
 
 /// How many OpenMP regions the calling thread has run without a team (inside a CholmodScope,
-/// in no parallel region) since it started: a test's and a benchmark's check that the
-/// shortcut above is in place (0 when the program's GOMP_parallel is libgomp's own).
+/// in no parallel region) since it started: the check that the shortcut above is in place
+/// (tests/fem/test_solve.cpp; 0 when the program's GOMP_parallel is the runtime's own).
 long teamlessRegionCount();
 
 }  // namespace ablmg::fem
