@@ -17,7 +17,7 @@
 ///    calls, and forwards every other call to it). A team of one costs a team allocation
 ///    and two futex system calls (libgomp wakes its barrier's waiters even when there are
 ///    none): 1.05·10⁶ system calls in the 10⁶ factorisation, 0.7 s of its 1.9 s numeric phase
-///    on the 2-core benchmark machine (docs/benchmarks.md, "Solver ordering"). The body run
+///    on the 2-core benchmark machine (docs/benchmarks.md, "P1 solver"). The body run
 ///    alone is the team of one's work exactly: with no team omp_get_num_threads() is 1 and
 ///    omp_get_thread_num() 0, so each worksharing loop takes all its iterations, and its
 ///    barriers return at once. Inside any parallel region (level ≥ 1) the call goes to the
