@@ -100,8 +100,9 @@ static void avoidBusyWaitingUnderLoad(char** argv) {
 /// refinement of bench_remesh.sh: peak 231–252 → 196–198 MB; 1 MB cost 0.8 CPU s of page faults).
 /// The price is a fresh mapping, page faults included, for every large array: 1.8·10⁵ faults
 /// against 0.7·10⁵ in that refinement, 0.6–0.9 s of its 2.1–2.7 s on a virtual machine whose
-/// faults cost ≈ 6 µs. So only the commands that build one large mesh and exit (mesh, remesh,
-/// surface), where the peak is what a user runs out of, fix the threshold; the loops (adapt,
+/// faults cost ≈ 6 µs (huge_pages.cpp takes most of it back: one fault per 2 MB of a large
+/// block). So only the commands that build one large mesh and exit (mesh, remesh, surface),
+/// where the peak is what a user runs out of, fix the threshold; the loops (adapt,
 /// transient), which allocate the same arrays again every cycle, and solve and stats keep
 /// glibc's own policy (the tanh layer's loop to 1.1·10⁵ vertices: 1.78·10⁵ → 0.4–0.5·10⁵ faults,
 /// 10.9 → 8.2–9.3 s wall, peak 115 → 132–144 MB). The user's GLIBC_TUNABLES still win: mallopt
