@@ -11,7 +11,8 @@ PopulationSchedule::PopulationSchedule(long target, int maxSteps) : until_(std::
 void PopulationSchedule::afterPass(long edits, int size) {
   counts_.push_back(size);
   const std::size_t w = std::size_t(std::max(1, pop_.steerWindow));
-  if (counts_.size() > w && counts_.back() <= counts_[counts_.size() - 1 - w]) pop_.steerUp = false;
+  if (counts_.size() > w && counts_.back() <= (1 + pop_.steerMinGrowth) * counts_[counts_.size() - 1 - w])
+    pop_.steerUp = false;
   nearlySettled_ = double(edits) <= 2e-3 * size;
   if (double(edits) <= 1e-4 * size) {
     if (++quietPasses_ >= 2) settled_ = true;

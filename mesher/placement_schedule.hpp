@@ -21,7 +21,7 @@ struct PlacementOptions;
 /// after two passes in a row that change at most 1 node in 10⁴ (large graded runs otherwise
 /// keep editing 1–3 nodes per pass, each edit jolting its neighbourhood), at 60 % of maxSteps,
 /// or when the driver settles it (an early stop). Steering up (PopulationOptions::steerUp) ends
-/// once the count has not grown over steerWindow passes.
+/// once the count has grown by less than steerMinGrowth over steerWindow passes.
 class PopulationSchedule {
  public:
   PopulationSchedule(long target, int maxSteps);

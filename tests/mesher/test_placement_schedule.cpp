@@ -40,6 +40,28 @@ TEST(PopulationSchedule, SteeringUpEndsWhenTheCountStopsGrowing) {
   EXPECT_FALSE(s.options().steerUp);
 }
 
+TEST(PopulationSchedule, SteeringUpEndsWhenTheCountOnlyCreeps) {
+  PopulationSchedule s(100000, 2000);
+  const int window = s.options().steerWindow;
+  const double creep = 0.5 * s.options().steerMinGrowth / window;  // per pass: half the tolerance over the window
+  double count = 95000;
+  for (int k = 0; k < window; ++k) {
+    s.afterPass(450, int(count));  // a churn of 0.45 % that nets +creep
+    EXPECT_TRUE(s.options().steerUp) << k;
+    count *= 1 + creep;
+  }
+  s.afterPass(450, int(count));
+  EXPECT_FALSE(s.options().steerUp);
+
+  PopulationSchedule growing(100000, 2000);
+  count = 90000;
+  for (int k = 0; k <= 2 * window; ++k) {
+    growing.afterPass(450, int(count));
+    count *= 1 + 2 * growing.options().steerMinGrowth / window;  // twice the tolerance over the window
+  }
+  EXPECT_TRUE(growing.options().steerUp);
+}
+
 TEST(DefectSchedule, PassesComeEveryStepsApartUntilStopped) {
   DefectSchedule d(2, 20);
   EXPECT_TRUE(d.due(5));
