@@ -56,13 +56,15 @@ struct PopulationOptions {
          squeezeAlpha = 6.3;  ///< also delete where the nearest neighbour is closer than this and α above that
   double minGap = 0.85;       ///< an insertion point must be at least this far (metric) from the node's neighbours
   double steerDeleteAbove = 6.7, steerInsertBelow = 5.8;
-  double steerMinGap = 0.65;      ///< minGap while steering up (below the aim)
-  double steerTolerance = 0.01;   ///< steer down only when more than this (relative) above the aim
-  double targetMargin = 0.01;     ///< aim = (1 + targetMargin) · target (see above)
-  long target = -1;               ///< N*; < 0 = no steering
-  bool steerUp = true;            ///< steering up allowed (placeNodes clears it, see steerWindow)
-  int steerWindow = 4;            ///< passes: placeNodes ends steering up once the count has not grown over this many
-  double steerMinGrowth = 0.005;  ///< ... by more than this share (see above)
+  double steerMinGap = 0.65;     ///< minGap while steering up (below the aim)
+  double steerTolerance = 0.01;  ///< steer down only when more than this (relative) above the aim
+  double targetMargin = 0.01;    ///< aim = (1 + targetMargin) · target (see above)
+  long target = -1;              ///< N*; < 0 = no steering
+  bool steerUp = true;           ///< steering up allowed (placeNodes clears it, see steerWindow)
+  /// Steering up ends once the count has grown by less than steerMinGrowth (relative) over the
+  /// last steerWindow passes (PopulationSchedule, see above).
+  int steerWindow = 4;
+  double steerMinGrowth = 0.005;
 };
 
 struct PopulationChange {
