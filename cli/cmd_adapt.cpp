@@ -8,7 +8,7 @@
 //               [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
 //               [--dual-goal on|off]
 //               [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--stop-jump J] [--warm-start on|off]
-//               [--lattice short|axes|long] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--png on|off] [--out-dir DIR]
+//               [--lattice short|axes|long|auto] [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off] [--vtu on|off] [--medit on|off] [--png on|off] [--out-dir DIR]
 //
 // NAME is a problem of fem/test_problems.hpp (wavefront, peak, lshape, tanhlayer, ...), KEY one
 // of its parameters. --vertices N: the default schedule, from N0 to N geometrically with P passes
@@ -417,7 +417,7 @@ const char* kAdaptHelp =
                    [--hmin H] [--hmax H] [--hmax-uniform K] [--l2-share F] [--dual-weight G] [--h1-weight G] [--dual-share F]
                    [--dual-goal on|off]
                    [--max-aniso R] [--seed S] [--stop-l2 E] [--stop-h1 E] [--stop-aim A] [--stop-jump J] [--warm-start on|off]
-                   [--lattice short|axes|long]
+                   [--lattice short|axes|long|auto]
                    [--plateau-gain G] [--saddle-shape S] [--corner-grading B] [--repeat-min-change C] [--uniform on|off]
                    [--vtu on|off]
                    [--medit on|off]
@@ -460,7 +460,8 @@ differs from the one its mesh was built for by less than C (dM= in the cycle lin
 largest log change of a unit edge's length; 0 = run every pass; default 0, and 0.2 with
 --stop-l2/--stop-h1, where only the last cycle's error counts; adapt/adaptive_loop.hpp).
 --lattice: the initial bubble lattice has one row along each node's short-size direction
-(short, the default here), the x axis's image (axes) or the long-size direction (long).
+(short, the default here), the x axis's image (axes), the long-size direction (long), or
+short only where the metric is stretched (auto: h1/h2 >= 16; axes where <= 8).
 --plateau-gain G: placement stops once the share of bubble pairs within 10 % of unit metric
 length gains less than G in 10 steps (default 0.01, as ablmg remesh; 0 = run to the residual
 or stall rule: ~1/3 more remesh time, errors a few % lower; adapt/adaptive_loop.hpp).

@@ -71,9 +71,10 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
                    vertices kept), so only the inside is remeshed, as MMG's -nosurf
   --seed N         placement seed: 0 (default) the nodes as placed; N > 0 a different mesh of
                    the same statistics, the same for the same N
-  --lattice O      orientation of the initial bubble lattice: axes (default), short (one row
-                   along each node's short-size direction: lower FE errors for Hessian
-                   metrics, see docs/method.md), long
+  --lattice O      orientation of the initial bubble lattice: auto (default: short where
+                   h1/h2 >= 16, axes where <= 8), axes, short (one row along each node's
+                   short-size direction: lower FE errors for Hessian metrics, see
+                   docs/method.md), long
   --warm-start W   auto (default), on, off: seed the placement with the input's interior
                    vertices (auto: when half of its edges are already within 10 % of unit
                    length, e.g. a mesh remeshed to its own metric; see adapt/remesh.hpp)
@@ -129,7 +130,7 @@ struct RemeshArgs {
   int verbose = 1, metField = 0;
   bool help = false, printOptions = false, noSurf = false;
   long long seed = 0;
-  mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Axes;
+  mesher::LatticeOrientation lattice = mesher::LatticeOrientation::Auto;
   adapt::RemeshOptions::WarmStart warmStart = adapt::RemeshOptions::WarmStart::IfFits;
 };
 

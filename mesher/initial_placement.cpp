@@ -51,12 +51,15 @@ bool crossesHalfOpen(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b)
 /// 0.65–0.75, shape and rows both ramped with the weight had 9–14 % more H1² than the better
 /// end; scripts/saddle_triangle_shape.py), so the rows meet in a seam where the interpolated
 /// weight crosses ½.
+/// Auto: the eigenframe is blended in from ratio kAutoAlignFrom to kAutoAlignRatio instead.
 Eigen::Matrix2d latticeMap(const MetricEigen& e, LatticeOrientation orientation, double alignRatio,
                            const Vec2& row = Vec2::Zero()) {
   double phi = 0;
   if (orientation != LatticeOrientation::Axes) {
-    const double target = e.theta + (orientation == LatticeOrientation::ShortAxis ? std::numbers::pi / 2 : 0.0);
-    const double w = std::clamp((e.h1 / e.h2 - 1) / std::max(alignRatio - 1, 1e-12), 0.0, 1.0);
+    const double target = e.theta + (orientation == LatticeOrientation::LongAxis ? 0.0 : std::numbers::pi / 2);
+    const bool automatic = orientation == LatticeOrientation::Auto;
+    const double from = automatic ? kAutoAlignFrom : 1.0, full = automatic ? kAutoAlignRatio : alignRatio;
+    const double w = std::clamp((e.h1 / e.h2 - from) / std::max(full - from, 1e-12), 0.0, 1.0);
     phi = std::atan2(w * std::sin(6 * target), (1 - w) + w * std::cos(6 * target)) / 6;
   }
   const double c = std::cos(e.theta), s = std::sin(e.theta);
@@ -352,7 +355,8 @@ LatticeOrientation parseLatticeOrientation(const std::string& name) {
   if (name == "axes") return LatticeOrientation::Axes;
   if (name == "long") return LatticeOrientation::LongAxis;
   if (name == "short") return LatticeOrientation::ShortAxis;
-  ABLMG_REQUIRE(false, "lattice orientation: expected axes, short or long, got '" << name << "'");
+  if (name == "auto") return LatticeOrientation::Auto;
+  ABLMG_REQUIRE(false, "lattice orientation: expected axes, short, long or auto, got '" << name << "'");
   return LatticeOrientation::Axes;
 }
 
@@ -362,6 +366,8 @@ const char* latticeOrientationName(LatticeOrientation orientation) {
       return "long";
     case LatticeOrientation::ShortAxis:
       return "short";
+    case LatticeOrientation::Auto:
+      return "auto";
     default:
       return "axes";
   }

@@ -98,16 +98,24 @@ enum class LatticeOrientation {
   Axes,       ///< p + M^{-1/2} d: rows along the images of the x axis (symmetric root)
   LongAxis,   ///< one row along each node's long-size eigenvector e1
   ShortAxis,  ///< one row along each node's short-size eigenvector e2
+  /// Axes where h1/h2 ≤ kAutoAlignFrom, ShortAxis where h1/h2 ≥ kAutoAlignRatio, blended
+  /// between (the default of `mesh` and `remesh`). On a layer (h1/h2 = 10²–10⁴) the axes'
+  /// rows cross the layer's thin rows at an angle and the population control spends tens of
+  /// passes repairing the seams (docs/method.md §1); on mild anisotropy the axes are as good
+  /// or better, and there the lattice is the axes' one, node for node.
+  Auto,
 };
+inline constexpr double kAutoAlignFrom = 8;
+inline constexpr double kAutoAlignRatio = 16;
 
-/// "axes" | "long" | "short" (InputError otherwise).
+/// "axes" | "long" | "short" | "auto" (InputError otherwise).
 LatticeOrientation parseLatticeOrientation(const std::string& name);
 const char* latticeOrientationName(LatticeOrientation orientation);
 
 struct InteriorPlacementOptions {
   double minNodeDistance = 0.75;  ///< metric; lattice candidates closer to a node are dropped
   double minWallDistance = 0.55;  ///< metric; ≈ √3/2 − spacing tolerance for a boundary row
-  LatticeOrientation orientation = LatticeOrientation::Axes;
+  LatticeOrientation orientation = LatticeOrientation::Auto;
   /// LongAxis/ShortAxis: full alignment from this anisotropy ratio h1/h2 on, blended towards
   /// Axes below it (the eigenframe of a near-isotropic metric is noise).
   double alignRatio = 1.5;

@@ -182,7 +182,7 @@ per-vertex metric: the call a solver makes between two solves (adapt/remesh.hpp;
   hgrad           size gradation beta > 1 on the input mesh after the clamp (default 1.3,
                   MMG's); <= 0 (e.g. -1): none
   seed            placement seed (default 0: no jitter; s > 0: another mesh of the same
-                  statistics, the same for the same s); lattice: 'axes' (default), 'short', 'long'
+                  statistics, the same for the same s); lattice: 'auto' (default), 'axes', 'short', 'long'
   options         a MeshOptions (default MeshOptions('remesh'))
   domain          a Domain the mesh covers (e.g. the exact polygon of the problem): meshed
                   instead of the domain rebuilt from the mesh's boundary loops; the metric is
@@ -363,7 +363,7 @@ any field below by keyword. Values are range-checked when a mesh is made.)")
           [](mesher::MeshOptions& o, const std::string& s) {
             o.placement.lattice.orientation = mesher::parseLatticeOrientation(s);
           },
-          "orientation of the initial bubble lattice: 'axes', 'short' or 'long'")
+          "orientation of the initial bubble lattice: 'auto', 'axes', 'short' or 'long'")
       .def_property(
           "plateau_steps", [](const mesher::MeshOptions& o) { return o.placement.plateauSteps; },
           [](mesher::MeshOptions& o, int v) { o.placement.plateauSteps = v; },

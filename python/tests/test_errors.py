@@ -159,7 +159,7 @@ def test_option_out_of_range():
 
 def test_unknown_lattice():
     """unknown lattice orientation"""
-    with pytest.raises(ValueError, match="expected axes, short or long, got 'diagonal'"):
+    with pytest.raises(ValueError, match="expected axes, short, long or auto, got 'diagonal'"):
         ablmg.remesh(PTS, TRI, H, lattice="diagonal")
     with pytest.raises(ValueError, match="'diagonal'"):
         ablmg.MeshOptions(lattice="diagonal")

@@ -196,7 +196,7 @@ foreach(case
     "bad_stop_aim|--problem wavefront --vertices 1000 --stop-h1 0.1 --stop-aim 1.5|--stop-aim must be in \\[0, 1\\] \\(0: off\\), got 1.5"
     "bad_stop_jump|--problem wavefront --vertices 1000 --stop-h1 0.1 --stop-jump 200|--stop-jump must be in \\[0, 100\\], got 200"
     "bad_saddle_shape|--problem wavefront --vertices 1000 --saddle-shape 2|--saddle-shape must be in \\[0, 1\\], got 2"
-    "bad_lattice|--problem wavefront --target-vertices 500 --lattice diagonal|lattice orientation: expected axes, short or long, got 'diagonal'")
+    "bad_lattice|--problem wavefront --target-vertices 500 --lattice diagonal|lattice orientation: expected axes, short, long or auto, got 'diagonal'")
   string(REPLACE "|" ";" _parts "${case}")
   list(GET _parts 0 _name)
   list(GET _parts 1 _args)

@@ -38,7 +38,7 @@ set_tests_properties(cli.remesh_report_contents PROPERTIES LABELS cli DEPENDS cl
 ablmg_cli_failure(remesh_report_is_output "--report must not be the output mesh or .sol"
                   remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report_is_output.mesh
                   --report ${_out}/remesh_report_is_output.mesh)
-ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short or long, got 'rows'"
+ablmg_cli_failure(remesh_bad_lattice "lattice orientation: expected axes, short, long or auto, got 'rows'"
                   remesh -in ${_data}/square.mesh --lattice rows -out ${_out}/remesh_bad_lattice.mesh)
 # The .sol is read on a second thread; the errors still come in the sequential order:
 # the mesh's parse error, then the .sol's, then the mesh's validity.

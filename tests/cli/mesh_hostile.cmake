@@ -9,7 +9,7 @@ endfunction()
 ablmg_hostile_config(tiny "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e-6\"}}")
 ablmg_cli_failure(hostile_tiny_size "asks for about [0-9]+ nodes, more than maxNodes = 50000000" mesh ${_hdir}/tiny.json -o ${_hdir}/tiny.mesh)
 ablmg_hostile_config(bad_lattice "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": \"diagonal\"}}}")
-ablmg_cli_failure(config_bad_lattice "bad_lattice.json: options.placement.latticeOrientation: .*expected axes, short or long, got 'diagonal'"
+ablmg_cli_failure(config_bad_lattice "bad_lattice.json: options.placement.latticeOrientation: .*expected axes, short, long or auto, got 'diagonal'"
                   mesh ${_hdir}/bad_lattice.json -o ${_hdir}/bad_lattice.mesh)
 ablmg_hostile_config(lattice_number "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.1\"}, \"options\": {\"placement\": {\"latticeOrientation\": 2}}}")
 ablmg_cli_failure(config_lattice_number "lattice_number.json: options.placement.latticeOrientation: expected string, got number"

@@ -282,7 +282,28 @@ TEST(InitialPlacement, LatticeOrientationTurnsTheRowsInMetricSpace) {
     for (double a : angles) EXPECT_LT(distMod60(a, 0), 1e-9);
   }
   EXPECT_EQ(parseLatticeOrientation("short"), LatticeOrientation::ShortAxis);
+  EXPECT_EQ(parseLatticeOrientation("auto"), LatticeOrientation::Auto);
   EXPECT_THROW(parseLatticeOrientation("diagonal"), InputError);
+}
+
+TEST(InitialPlacement, AutoOrientationTurnsOnlyStretchedLattices) {
+  // Auto is the axes' lattice up to h1/h2 = kAutoAlignFrom and the short axis's from
+  // kAutoAlignRatio on; in between the rows are turned part of the way.
+  const double theta = 0.3;
+  const double shortAxis = std::fmod(theta + std::numbers::pi / 2, std::numbers::pi / 3);
+  const auto rows = [&](double ratio) {
+    return rowAnglesMod60(Metric2::fromSizes(0.2, 0.2 / ratio, theta), LatticeOrientation::Auto);
+  };
+  for (const auto& [ratio, expected] : {std::pair{4.0, 0.0}, std::pair{kAutoAlignFrom, 0.0},
+                                        std::pair{kAutoAlignRatio, shortAxis}, std::pair{20.0, shortAxis}}) {
+    const auto angles = rows(ratio);
+    ASSERT_EQ(angles.size(), 6u) << "h1/h2 = " << ratio;
+    for (double a : angles) EXPECT_LT(distMod60(a, expected), 1e-9) << "h1/h2 = " << ratio;
+  }
+  const auto between = rows(0.5 * (kAutoAlignFrom + kAutoAlignRatio));
+  ASSERT_EQ(between.size(), 6u);
+  EXPECT_GT(distMod60(between[0], 0), 1e-3);
+  EXPECT_GT(distMod60(between[0], shortAxis), 1e-3);
 }
 
 TEST(InitialPlacement, FieldLatticeRowsTurnTheRowsOntoTheirDirection) {
