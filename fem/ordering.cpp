@@ -321,6 +321,93 @@ struct Dissection {
     return {chosen / kQuantiles, m[chosen / kQuantiles][chosen % kQuantiles]};
   }
 
+  /// The fewest vertices covering every edge between the two sides of a cut (König's theorem:
+  /// a maximum matching of the bipartite graph of those edges, then the cover read off the
+  /// alternating paths from the unmatched lower vertices). In: tl[k] = 1 for the lower
+  /// vertices with an upper neighbour, tu[k] = 1 for the upper ones with a lower neighbour
+  /// (those carry stamp st). Out: tl, tu flag the cover's vertices on each side, at most
+  /// min(Σ tl, Σ tu) of them (taking one whole side is a cover; on a structured grid it is a
+  /// minimum one already). Serial, O(cover · cut edges) at worst, deterministic.
+  void minimumCover(const std::vector<int>& lower, const std::vector<int>& upper, int st, std::vector<char>& tl,
+                    std::vector<char>& tu) {
+    std::vector<int> left, right;  // indices into lower and upper
+    for (std::size_t k = 0; k < lower.size(); ++k)
+      if (tl[k]) left.push_back(int(k));
+    for (std::size_t k = 0; k < upper.size(); ++k)
+      if (tu[k]) {
+        local[upper[k]] = int(right.size());
+        right.push_back(int(k));
+      }
+    const int nl = int(left.size()), nr = int(right.size());
+    if (nl == 0 || nr == 0) return;
+    std::vector<int> start(std::size_t(nl) + 1, 0), edge;
+    for (int a = 0; a < nl; ++a) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(A, lower[std::size_t(left[std::size_t(a)])]); it; ++it)
+        if (markOf(int(it.index())) == st) edge.push_back(local[it.index()]);
+      start[std::size_t(a) + 1] = int(edge.size());
+    }
+    // Maximum matching: greedy, then one breadth-first augmenting search per free left vertex.
+    std::vector<int> mateL(std::size_t(nl), -1), mateR(std::size_t(nr), -1);
+    for (int a = 0; a < nl; ++a)
+      for (int e = start[a]; e < start[a + 1]; ++e)
+        if (mateR[std::size_t(edge[e])] < 0) {
+          mateL[std::size_t(a)] = edge[e];
+          mateR[std::size_t(edge[e])] = a;
+          break;
+        }
+    std::vector<int> from(std::size_t(nr), -1), queue;  // from[b]: the left vertex that reached b
+    std::vector<int> seenR(std::size_t(nr), -1);
+    for (int a0 = 0; a0 < nl; ++a0) {
+      if (mateL[std::size_t(a0)] >= 0) continue;
+      queue.assign(1, a0);
+      int end = -1;
+      for (std::size_t q = 0; q < queue.size() && end < 0; ++q) {
+        const int a = queue[q];
+        for (int e = start[a]; e < start[a + 1]; ++e) {
+          const int b = edge[e];
+          if (seenR[std::size_t(b)] == a0) continue;
+          seenR[std::size_t(b)] = a0;
+          from[std::size_t(b)] = a;
+          if (mateR[std::size_t(b)] < 0) {
+            end = b;
+            break;
+          }
+          queue.push_back(mateR[std::size_t(b)]);
+        }
+      }
+      for (int b = end; b >= 0;) {  // flip the path
+        const int a = from[std::size_t(b)], next = mateL[std::size_t(a)];
+        mateL[std::size_t(a)] = b;
+        mateR[std::size_t(b)] = a;
+        b = next;
+      }
+    }
+    // König: Z = the vertices on alternating paths from the free left vertices; the cover is
+    // (left ∖ Z) ∪ (right ∩ Z).
+    std::vector<char> inZL(std::size_t(nl), 0), inZR(std::size_t(nr), 0);
+    queue.clear();
+    for (int a = 0; a < nl; ++a)
+      if (mateL[std::size_t(a)] < 0) {
+        inZL[std::size_t(a)] = 1;
+        queue.push_back(a);
+      }
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const int a = queue[q];
+      for (int e = start[a]; e < start[a + 1]; ++e) {
+        const int b = edge[e];
+        if (inZR[std::size_t(b)]) continue;
+        inZR[std::size_t(b)] = 1;
+        const int m = mateR[std::size_t(b)];
+        if (m >= 0 && !inZL[std::size_t(m)]) {
+          inZL[std::size_t(m)] = 1;
+          queue.push_back(m);
+        }
+      }
+    }
+    for (int a = 0; a < nl; ++a) tl[std::size_t(left[std::size_t(a)])] = !inZL[std::size_t(a)];
+    for (int b = 0; b < nr; ++b) tu[std::size_t(right[std::size_t(b)])] = inZR[std::size_t(b)];
+  }
+
   /// Cuts `set` (more than leafSize vertices) into lower, upper and a separator, which goes
   /// into perm at its place; false (and the set ordered as a leaf) when there is nothing to cut.
   /// With `wide` (the first cut, before the recursion's tasks exist) its passes over the
@@ -353,9 +440,9 @@ struct Dissection {
       return false;
     }
     std::vector<int>().swap(set);  // free before recursing
-    // Edges lower–upper are covered by the smaller of: upper vertices touching lower, lower
-    // vertices touching upper. The separator is that set plus the middle. One scan of the
-    // lower side's adjacency finds both; a lower vertex farther below m than its reach has no
+    // The vertices on the edges lower–upper: upper vertices touching lower, lower vertices
+    // touching upper; the separator is the middle plus a minimum cover of those edges
+    // (minimumCover). One scan of the lower side's adjacency finds both sets; a lower vertex farther below m than its reach has no
     // neighbour above m and is skipped (the same sets: only the scan is shorter). On several
     // threads a vertex is marked st by whichever finds it first: the same marks and flags.
     const int su = newStamp();
@@ -382,7 +469,7 @@ struct Dissection {
     forRanges(upper.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
       for (std::size_t k = b; k < e; ++k) tu[k] = markOf(upper[k]) == st;
     });
-    const long cu = std::count(tu.begin(), tu.end(), 1), cl = std::count(tl.begin(), tl.end(), 1);
+    minimumCover(lower, upper, st, tl, tu);
     std::vector<int> separator = std::move(middle);
     auto split = [&](std::vector<int>& side, const std::vector<char>& t) {
       std::vector<int> keep;
@@ -390,10 +477,8 @@ struct Dissection {
       partitionInOrder<2>(side, parts, wide, [&](std::size_t k) { return t[k] ? 1 : 0; }, {&keep, &separator});
       side.swap(keep);
     };
-    if (cu <= cl)
-      split(upper, tu);
-    else
-      split(lower, tl);
+    split(upper, tu);
+    split(lower, tl);
     // Layout: lower, upper, separator.
     const std::size_t sepOffset = offset + lower.size() + upper.size();
     std::sort(separator.begin(), separator.end());

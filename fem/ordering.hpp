@@ -19,9 +19,12 @@
 /// smallest count as equal, and of those the cut goes across the piece's longest extent along
 /// its direction, so that the pieces stay compact (19.2 → 16.7 GFlop on the uniform 10⁶ grid,
 /// the adapted meshes unchanged). CutChoice::LongerAxis is the older
-/// rule (the longer bounding-box axis), kept for comparison. The separator is the middle plus the
-/// smaller of (upper vertices adjacent to lower) and (lower vertices adjacent to upper); on a
-/// structured grid it is exactly one grid line. Both sides are ordered recursively, then the
+/// rule (the longer bounding-box axis), kept for comparison. The separator is the middle plus a
+/// minimum vertex cover of the edges between lower and upper (König's theorem, from a maximum
+/// matching), never more than the smaller of (upper vertices adjacent to lower) and (lower
+/// vertices adjacent to upper), which the choice of the cut counts; on a structured grid, and
+/// on a jittered one, it is one grid line (the cover: uniform 10⁵ grid 0.370 → 0.354 GFlop,
+/// 10⁶ 14.2 → 13.9, the wave front's mesh 0.970 → 0.946). Both sides are ordered recursively, then the
 /// separator (by id). Sets of ≤ `leafSize` unknowns are ordered by approximate minimum degree
 /// (SuiteSparse AMD), which beats dissection on small pieces. Deterministic: no ties decide.
 #include "ablmg/core/vec2.hpp"
