@@ -62,18 +62,22 @@ inline void fixBlasThreads() {
 ///    flops/nnz 30) takes it: 0.18 → 0.12 s CPU; the uniform and wave-front meshes (170–210)
 ///    and the 10⁶ grid stay supernodal. final_ll: the simplicial path computes LLᵀ, whose
 ///    non-positive pivot is an error (LDLᵀ would accept an indefinite matrix).
-///  - nrelax = {16, 64, 256} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
-///    small supernodes, allowing explicit zeros. On the uniform 317² grid 2.4× fewer OpenMP
-///    regions and 6.5 % fewer instructions (callgrind); {64, 256, 1024} doubles the
-///    instructions (the zeros' flops), zrelax changes did not help; the 10⁶ grid unchanged.
+///  - nrelax = {8, 32, 128} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
+///    small supernodes, allowing explicit zeros. Larger merges paid while every region cost a
+///    team ({16, 64, 256}: on the uniform 317² grid 2.4× fewer OpenMP regions, 6.5 % fewer
+///    instructions); with the regions run without one (CholmodScope), the zeros cost more
+///    than the regions: numeric phase, {16, 64, 256} → {8, 32, 128}, three alternated pairs
+///    (bench_solve_graded): wave-front mesh (9.3·10⁴ unknowns) 0.100–0.111 → 0.043–0.051 s,
+///    10⁶ grid 0.97–1.08 → 0.90–0.91 s, uniform 10⁵ grid 0.030–0.031 → 0.037–0.042 s, the
+///    layer's (simplicial) the same; CHOLMOD's defaults were slower than {8, 32, 128} on all.
 /// Used by every Poisson factorisation (fem/solve.cpp, fem/split_cholesky.cpp). Measured with
 /// bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
 inline void configureFactorisation(cholmod_common& c) {
   c.supernodal = CHOLMOD_AUTO;
   c.final_ll = 1;
-  c.nrelax[0] = 16;
-  c.nrelax[1] = 64;
-  c.nrelax[2] = 256;
+  c.nrelax[0] = 8;
+  c.nrelax[1] = 32;
+  c.nrelax[2] = 128;
 }
 
 class CholmodScope {
