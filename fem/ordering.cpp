@@ -80,7 +80,7 @@ struct Dissection {
   std::vector<int> perm;
   std::unique_ptr<std::atomic<int>[]> mark;
   std::atomic<int> stamp{0};
-  std::vector<int> local;  ///< index of a vertex in its leaf (valid while the leaf is ordered)
+  std::vector<int> local;  ///< index of a vertex in its leaf, or on its cut (valid while that piece is ordered)
   /// reach[4 v + d] ≥ max over v's neighbours w of |along(w, d) − along(v, d)| (rounded up to
   /// float): a vertex farther than that from a cut line has no edge across it.
   std::vector<float> reach;
