@@ -69,7 +69,9 @@ inline void fixBlasThreads() {
 ///    than the regions: numeric phase, {16, 64, 256} → {8, 32, 128}, three alternated pairs
 ///    (bench_solve_graded): wave-front mesh (9.3·10⁴ unknowns) 0.100–0.111 → 0.043–0.051 s,
 ///    10⁶ grid 0.97–1.08 → 0.90–0.91 s, uniform 10⁵ grid 0.030–0.031 → 0.037–0.042 s, the
-///    layer's (simplicial) the same; CHOLMOD's defaults were slower than {8, 32, 128} on all.
+///    layer's the same; CHOLMOD's defaults were slower than {8, 32, 128} on all. On the final
+///    meshes of the library's adaptive loops (6–11·10⁴ unknowns) the whole solve took 0.82–0.98×
+///    the time on eight problems and 1.26× on the tanh layer's (docs/experiments.md).
 /// Used by every Poisson factorisation (fem/solve.cpp, fem/split_cholesky.cpp). Measured with
 /// bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
 inline void configureFactorisation(cholmod_common& c) {

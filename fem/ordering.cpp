@@ -445,9 +445,10 @@ struct Dissection {
     std::vector<int>().swap(set);  // free before recursing
     // The vertices on the edges lower–upper: upper vertices touching lower, lower vertices
     // touching upper; the separator is the middle plus a minimum cover of those edges
-    // (minimumCover). One scan of the lower side's adjacency finds both sets; a lower vertex farther below m than its reach has no
-    // neighbour above m and is skipped (the same sets: only the scan is shorter). On several
-    // threads a vertex is marked st by whichever finds it first: the same marks and flags.
+    // (minimumCover). One scan of the lower side's adjacency finds both sets; a lower vertex
+    // farther below m than its reach has no neighbour above m and is skipped (the same sets:
+    // only the scan is shorter). On several threads a vertex is marked st by whichever finds it
+    // first: the same marks and flags.
     const int su = newStamp();
     forRanges(upper.size(), parts, wide, [&](int, std::size_t b, std::size_t e) {
       for (std::size_t k = b; k < e; ++k) setMark(upper[k], su);
