@@ -14,11 +14,13 @@
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
 #include "ablmg/mesher/mesher.hpp"
+#include "ablmg/mesher/quality.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <limits>
 #include <cstdio>
+#include <iomanip>
 #include <iostream>
 
 namespace ablmg::cli {
@@ -138,6 +140,24 @@ MeshOutcome meshOrPlace(const Config& cfg, const std::string& configPath) {
   return o;
 }
 
+/// A note on stderr when the metric changes by more than its own size within one element along
+/// more than kJumpNoteShare of the mesh's sides (mesher::metricJumpShare at ratio 2; meshes of
+/// smooth or graded metrics stay ≤ 0.1 %): no mesh gives such a metric unit edges, and the user
+/// sees why before measuring the result.
+void noteFastVaryingMetric(const MeshOutcome& o, const std::string& configPath) {
+  constexpr double kJumpNoteShare = 0.005;
+  if (o.mesh.triangles.empty()) return;
+  const double share = mesher::metricJumpShare(o.mesh, o.metric, 2.0);
+  if (share <= kJumpNoteShare) return;
+  std::cerr << "ablmg mesh: note: on " << std::fixed << std::setprecision(1) << 100 * share
+            << " % of the triangles' sides the metric length measured at one end is over twice that at the"
+               " other: the metric varies by more than its own size within one element, so no mesh gives it"
+               " unit edges there (measure: ablmg stats OUT.mesh --metric "
+            << (configPath.empty() ? std::string("CONFIG.json") : configPath)
+            << "). Sizes that change by at most a factor of about 1.5 from one element to the next avoid it.\n"
+            << std::defaultfloat;
+}
+
 /// Every output (atomic each) and the report; on failure removes the ones already written.
 void writeMeshOutputs(const Config& cfg, const std::vector<std::string>& outputs, const std::string& reportPath,
                       nlohmann::json report, const MeshOutcome& o, double seconds) {
@@ -211,6 +231,7 @@ int runMesh(const std::vector<std::string>& argv) {
   std::cout << ")";
   for (const auto& path : outputs) std::cout << " -> " << path;
   std::cout << "\n";
+  noteFastVaryingMetric(o, args.configPath);
   return 0;
 }
 

@@ -56,7 +56,7 @@ struct MeshResult {
 ///   plateauSteps / plateauGain   0 (off)            10 / 0.01               10 / 0.01
 ///   finalRelaxSteps              10                 0                       10
 ///   defectPasses                 6                  6                       0
-///   lattice.orientation          Axes               Axes                    ShortAxis
+///   lattice.orientation          Auto               Auto                    ShortAxis
 ///
 /// - Mesh (`ablmg mesh`, the paper's cases): runs to the residual target; the packing is the
 ///   product, so defect annealing and a final relaxation are worth their steps.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 
 namespace ablmg::mesher {
 namespace {
@@ -43,6 +44,18 @@ std::vector<double> edgeMetricLengths(const Mesh2& mesh, std::span<const Metric2
   for (const auto& [a, b] : mesh.edges())
     l.push_back(average(metrics[a], metrics[b]).length(mesh.vertices[b] - mesh.vertices[a]));  // eq. (3)
   return l;
+}
+
+double metricJumpShare(const Mesh2& mesh, std::span<const Metric2> metrics, double ratio) {
+  requireOnePerVertex(mesh, metrics, "metricJumpShare");
+  long jumps = 0;
+  for (const auto& [i, j, k] : mesh.triangles)
+    for (const auto& [a, b] : {std::pair{i, j}, std::pair{j, k}, std::pair{k, i}}) {
+      const Vec2 e = mesh.vertices[std::size_t(b)] - mesh.vertices[std::size_t(a)];
+      const double la = metrics[std::size_t(a)].length(e), lb = metrics[std::size_t(b)].length(e);
+      jumps += std::max(la, lb) > ratio * std::min(la, lb);
+    }
+  return mesh.triangles.empty() ? 0.0 : double(jumps) / (3.0 * double(mesh.triangles.size()));
 }
 
 double triangleQuality(const Vec2& a, const Vec2& b, const Vec2& c, const Metric2& m) {

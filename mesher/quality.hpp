@@ -36,6 +36,14 @@ std::vector<double> elementQualities(const Mesh2& mesh, std::span<const Metric2>
 /// across the triangle, which q (averaged metric) smooths. metrics.size() == numVertices().
 std::vector<double> leeAlphas(const Mesh2& mesh, std::span<const Metric2> metrics);
 
+/// Share of the triangles' sides (an interior edge counted from each of its two triangles) whose
+/// lengths in their two end metrics, sqrt(eᵀ M_a e) and sqrt(eᵀ M_b e), differ by more than the
+/// factor `ratio` (> 1). Where it is large the metric changes by more than its own size within
+/// one element, and no mesh gives it unit edges there (eq. 3 averages what differs). Meshes of
+/// smooth or graded metrics: ≤ 0.1 % at ratio 2 (docs/limitations.md, "Fast-varying metrics").
+/// 0 for a mesh without triangles; metrics.size() == numVertices().
+double metricJumpShare(const Mesh2& mesh, std::span<const Metric2> metrics, double ratio = 2.0);
+
 struct EdgeLengthStats {
   long count = 0;
   double min = 0, mean = 0, max = 0;  ///< of l (all 0 when count == 0)

@@ -46,6 +46,16 @@ ablmg_hostile_config(crowded "{\"domain\": {\"loops\": [[[0,0],[1,0],[1,1],[0,1]
 add_test(NAME cli.mesh_crowded_corners_note COMMAND ablmg mesh ${_hdir}/crowded.json -o ${_hdir}/crowded.mesh)
 set_tests_properties(cli.mesh_crowded_corners_note PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "note: loop 1 has 4 of 4 segments shorter than half the metric size.*\"smooth\": true")
+# A size that changes by more than itself within one element: a valid mesh and a note (38.8 %
+# of the sides); a size graded by 0.1 per unit: no note.
+ablmg_hostile_config(fast_varying "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.01 + 0.05*(1 + sin(60*x)*sin(60*y))\"}}")
+add_test(NAME cli.mesh_fast_varying_metric_note COMMAND ablmg mesh ${_hdir}/fast_varying.json -o ${_hdir}/fast_varying.mesh)
+set_tests_properties(cli.mesh_fast_varying_metric_note PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "triangles in.*note: on [0-9.]+ % of the triangles' sides the metric length")
+ablmg_hostile_config(graded "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"0.02 + 0.1*x\"}}")
+add_test(NAME cli.mesh_graded_metric_no_note COMMAND ablmg mesh ${_hdir}/graded.json -o ${_hdir}/graded.mesh)
+set_tests_properties(cli.mesh_graded_metric_no_note PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "triangles in"
+                     FAIL_REGULAR_EXPRESSION "note:")
 # Valid meshes: a size a million times the domain (2 triangles), anisotropy 1e5.
 ablmg_hostile_config(huge "{\"domain\": {\"rectangle\": [0,0,1,1]}, \"metric\": {\"h\": \"1e6\"}}")
 add_test(NAME cli.hostile_huge_size COMMAND ablmg mesh ${_hdir}/huge.json -o ${_hdir}/huge.mesh)

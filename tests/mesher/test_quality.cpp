@@ -193,3 +193,20 @@ TEST(Quality, LeeAlphaInThePlaneTakesTheWorstVertexMetric) {
   EXPECT_NE(toText(q).find("alpha (Lee"), std::string::npos);
   EXPECT_THROW(leeAlphas(m, std::vector<Metric2>(2)), InputError);
 }
+
+TEST(Quality, MetricJumpShareCountsSidesWhoseEndsDisagree) {
+  const Mesh2 m = unitEquilateral();
+  EXPECT_EQ(metricJumpShare(m, std::vector<Metric2>(3)), 0.0);
+  // Vertex 2 asks for sizes a quarter of the others': its two sides are 4× longer measured there.
+  const std::vector<Metric2> jump = {Metric2::isotropic(1.0), Metric2::isotropic(1.0), Metric2::isotropic(0.25)};
+  EXPECT_NEAR(metricJumpShare(m, jump), 2.0 / 3.0, 1e-15);
+  EXPECT_NEAR(metricJumpShare(m, jump, 3.9), 2.0 / 3.0, 1e-15);
+  EXPECT_EQ(metricJumpShare(m, jump, 4.1), 0.0);
+  // A stretched metric at vertex 2 whose long axis runs along side 2–0 (60°): side 1–2 is
+  // 3.5× longer there (sqrt(0.25 + 0.75 · 16)), side 2–0 is not.
+  const double pi = std::acos(-1.0);
+  const std::vector<Metric2> turned = {Metric2::isotropic(1.0), Metric2::isotropic(1.0),
+                                       Metric2::fromSizes(1.0, 0.25, pi / 3)};
+  EXPECT_NEAR(metricJumpShare(m, turned), 1.0 / 3.0, 1e-15);
+  EXPECT_THROW(metricJumpShare(m, std::vector<Metric2>(2)), InputError);
+}
