@@ -11,8 +11,9 @@
 // load-independent measure), ordering seconds; the error of the solution so that a fast
 // wrong answer shows. BM_Solve times the solves after a first one, reported apart (t_first):
 // run each mesh in a process of its own (--benchmark_filter='BM_Solve/M/') for t_first to be
-// the first solve of a fresh process, as scripts/bench_solve.sh does. BM_Analyse (by hand: --benchmark_filter=BM_Analyse): each ordering's
-// factor non-zeros and flops on the 10⁵ and 10⁶ uniform grids, without factorising.
+// the first solve of a fresh process, as scripts/bench_solve.sh does. BM_Analyse (by hand:
+// --benchmark_filter=BM_Analyse): each ordering's factor non-zeros and flops on the 10⁵ and
+// 10⁶ uniform grids, without factorising.
 #include "ablmg/fem/assemble.hpp"
 #include "ablmg/fem/solve.hpp"
 #include "ablmg/fem/structured_mesh.hpp"

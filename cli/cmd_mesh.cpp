@@ -146,7 +146,6 @@ MeshOutcome meshOrPlace(const Config& cfg, const std::string& configPath) {
 /// sees why before measuring the result.
 void noteFastVaryingMetric(const MeshOutcome& o, const std::string& configPath) {
   constexpr double kJumpNoteShare = 0.005;
-  if (o.mesh.triangles.empty()) return;
   const double share = mesher::metricJumpShare(o.mesh, o.metric, 2.0);
   if (share <= kJumpNoteShare) return;
   std::cerr << "ablmg mesh: note: on " << std::fixed << std::setprecision(1) << 100 * share

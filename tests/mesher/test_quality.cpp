@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 using namespace ablmg;
@@ -204,9 +205,8 @@ TEST(Quality, MetricJumpShareCountsSidesWhoseEndsDisagree) {
   EXPECT_EQ(metricJumpShare(m, jump, 4.1), 0.0);
   // A stretched metric at vertex 2 whose long axis runs along side 2–0 (60°): side 1–2 is
   // 3.5× longer there (sqrt(0.25 + 0.75 · 16)), side 2–0 is not.
-  const double pi = std::acos(-1.0);
   const std::vector<Metric2> turned = {Metric2::isotropic(1.0), Metric2::isotropic(1.0),
-                                       Metric2::fromSizes(1.0, 0.25, pi / 3)};
+                                       Metric2::fromSizes(1.0, 0.25, std::numbers::pi / 3)};
   EXPECT_NEAR(metricJumpShare(m, turned), 1.0 / 3.0, 1e-15);
   EXPECT_THROW(metricJumpShare(m, std::vector<Metric2>(2)), InputError);
 }
