@@ -55,3 +55,14 @@ file(WRITE ${_dir}/good.json
      "{\"mesh\": {\"structured\": {\"nx\": 16, \"perturbation\": 0.2}}, \"problem\": \"smooth\", \"output\": {\"vtu\": \"good.vtu\", \"report\": \"good_report.json\"}}")
 add_test(NAME cli_solve_good COMMAND ablmg solve ${_dir}/good.json)
 set_tests_properties(cli_solve_good PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "L2=[0-9.e+-]+ .*H1=")
+
+# The report of a solve large enough for the split factorisation (fem/split_cholesky.hpp):
+# CHOLMOD's counts and the phase times, which add up to no more than the whole solve.
+file(WRITE ${_dir}/phases.json
+     "{\"mesh\": {\"structured\": {\"nx\": 160}}, \"problem\": \"peak\", \"output\": {\"vtu\": \"phases.vtu\", \"report\": \"phases_report.json\"}}")
+add_test(NAME cli_solve_phases COMMAND ablmg solve ${_dir}/phases.json)
+set_tests_properties(cli_solve_phases PROPERTIES LABELS cli FIXTURES_SETUP solve_phases
+                     PASS_REGULAR_EXPRESSION "ordering [0-9.]+, factorisation [0-9.]+, [0-9.e+]+ GFlop")
+add_test(NAME cli_solve_phases_report
+         COMMAND ${CMAKE_COMMAND} -DREPORT=${_dir}/phases_report.json -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_solve_report.cmake.in)
+set_tests_properties(cli_solve_phases_report PROPERTIES LABELS cli FIXTURES_REQUIRED solve_phases)
