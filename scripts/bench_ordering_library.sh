@@ -19,31 +19,30 @@ ablmg=$PWD/build/bin/ablmg
 out=bench/results/library_meshes
 mkdir -p "$out"
 schedule=1500,3000,6000,12000,24000,48000,96000
-# name|problem|params (JSON object body)
+# name|problem|parameter (KEY=VALUE, or empty)
 specs=(
   "wavefront|wavefront|"
-  "wavefront_steep|wavefront|\"alpha\": 1000"
+  "wavefront_steep|wavefront|alpha=1000"
   "peak|peak|"
   "lshape|lshape|"
   "tanhlayer|tanhlayer|"
-  "reentrant_5pi4|reentrant|\"omega\": 3.9269908169872414"
-  "reentrant_7pi4|reentrant|\"omega\": 5.497787143782138"
-  "slit|reentrant|\"omega\": 6.283185307179586"
+  "reentrant_5pi4|reentrant|omega=3.9269908169872414"
+  "reentrant_7pi4|reentrant|omega=5.497787143782138"
+  "slit|reentrant|omega=6.283185307179586"
   "linesing|linesing|"
   "multiple|multiple|"
 )
 rows=$(mktemp)
 for spec in "${specs[@]}"; do
-  IFS='|' read -r name problem params <<< "$spec"
+  IFS='|' read -r name problem param <<< "$spec"
   dir=$out/$name
+  paramArgs=() params=""
+  if [ -n "$param" ]; then
+    paramArgs=(--param "$param")
+    params="\"${param%%=*}\": ${param#*=}"
+  fi
   if [ ! -f "$dir/cycle_6.mesh" ]; then
     echo "== $name: 7 adaptive cycles up to 96000 vertices" >&2
-    paramArgs=()
-    if [ -n "$params" ]; then
-      key=$(echo "$params" | sed 's/"\([a-z0-9_]*\)": .*/\1/')
-      value=$(echo "$params" | sed 's/.*: //')
-      paramArgs=(--param "$key=$value")
-    fi
     "$ablmg" adapt --problem "$problem" "${paramArgs[@]}" --cycles 7 --target-vertices "$schedule" \
       --uniform off --medit on --vtu off --out-dir "$dir" > "$dir.log"
   fi
@@ -60,7 +59,7 @@ EOF
   done
 done
 /usr/bin/python3 - "$rows" bench/results/ordering_library.json <<'PY'
-import json, math, sys
+import json, sys
 runs = {}
 for line in open(sys.argv[1]):
     name, ordering, run, path = line.split()
