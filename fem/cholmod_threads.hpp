@@ -1,6 +1,7 @@
 #pragma once
-/// CHOLMOD's own OpenMP loops, run by the calling thread alone while a CholmodScope lives;
-/// the BLAS thread policy and the factorisation settings of fem/.
+/// CHOLMOD's own OpenMP loops, run by the calling thread alone while a CholmodScope lives, and
+/// its BLAS calls on small blocks, run in-line (smallBlasCallCount below); the BLAS thread
+/// policy and the factorisation settings of fem/.
 ///
 /// Debian's CHOLMOD (SuiteSparse 5) is built with `num_threads(4)` on the small loops of its
 /// supernodal factorisation and solves (zeroing a supernode, scattering A into it, clearing
@@ -97,5 +98,15 @@ class CholmodScope {
 /// in no parallel region) since it started: the check that the shortcut above is in place
 /// (tests/fem/test_solve.cpp; 0 when the program's GOMP_parallel is the runtime's own).
 long teamlessRegionCount();
+
+/// How many BLAS calls of CHOLMOD's (and fem/'s) the calling thread has run through the loops of
+/// fem/small_blas.hpp since it started. This file defines dgemm_, dsyrk_, dtrsm_, dpotrf_,
+/// dtrsv_ and dgemv_, which the dynamic linker resolves ahead of the BLAS: inside a
+/// CholmodScope, a call of the shape CHOLMOD's supernodal factorisation and solves make (C = A Bᵀ,
+/// lower(C) = A Aᵀ, B := B L⁻ᵀ, L Lᵀ = A, x := L⁻¹ x or L⁻ᵀ x, y += α A x or α Aᵀ x) on a block of
+/// at most smallblas::kSmallWork multiply-adds runs those loops; any other call, and every call
+/// outside a scope, goes to the BLAS. 0 when the program's definitions are not the ones in use
+/// (e.g. a module loaded with RTLD_LOCAL, where CHOLMOD's calls reach the BLAS directly).
+long smallBlasCallCount();
 
 }  // namespace ablmg::fem

@@ -238,6 +238,20 @@ TEST(Solve, CholmodRegionsWithoutATeamGiveTheSameBits) {
   EXPECT_TRUE(top == nested);
 }
 
+// CHOLMOD's per-supernode BLAS calls on small blocks run the loops of fem/small_blas.hpp
+// (fem/cholmod_threads.hpp): thousands of them on the calling thread's side of a 220² grid,
+// and the solution is still the nodal interpolant's neighbour (the check that the loops'
+// products are the factorisation's).
+TEST(Solve, SmallBlasCallsOfTheFactorisationRunInline) {
+  const Mesh2 m = unitSquareMesh(220, 0.2, 5);
+  const PoissonProblem p = makeProblem("smooth").poisson();
+  const long before = smallBlasCallCount();
+  const PoissonSolution s = solvePoisson(m, p);
+  EXPECT_GT(smallBlasCallCount() - before, 1000);
+  EXPECT_LT(s.stats.residual, 1e-12);
+  EXPECT_LT(maxNodalError(m, s.u, makeProblem("smooth").u), 1e-3);
+}
+
 // Above splitMinUnknowns the two sides of the first cut are factorised apart
 // (fem/split_cholesky.hpp): the same solution as one factorisation, to rounding, with a
 // small residual, on a uniform grid (supernodal sides) and on a stretched one (simplicial).
