@@ -30,6 +30,22 @@ long teamlessRegionCount() { return teamlessRegions; }
 
 }  // namespace ablmg::fem
 
+namespace {
+
+/// The definition of `name` that this program's replaces (the next one in the lookup order:
+/// the OpenMP runtime's, the BLAS's); aborts with a message if there is none.
+template <class F>
+F nextDefinition(const char* name) {
+  void* f = dlsym(RTLD_NEXT, name);
+  if (!f) {
+    std::fprintf(stderr, "ablmg: %s was not found after this program's definition (fem/cholmod_threads.cpp)\n", name);
+    std::abort();
+  }
+  return reinterpret_cast<F>(f);
+}
+
+}  // namespace
+
 /// libgomp's entry point for `#pragma omp parallel` (GCC's code, CHOLMOD's included, calls
 /// it with the outlined body `fn`, its argument, the requested thread count and the
 /// proc_bind flags). Defined here, it takes the calls of every library that the dynamic
@@ -45,11 +61,7 @@ extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned numThreads
     fn(data);
     return;
   }
-  static const Entry runtime = reinterpret_cast<Entry>(dlsym(RTLD_NEXT, "GOMP_parallel"));
-  if (!runtime) {
-    std::fputs("ablmg: the OpenMP runtime's GOMP_parallel was not found (fem/cholmod_threads.cpp)\n", stderr);
-    std::abort();
-  }
+  static const Entry runtime = nextDefinition<Entry>("GOMP_parallel");
   runtime(fn, data, numThreads, flags);
 }
 
@@ -67,17 +79,6 @@ namespace {
 using ablmg::fem::smallblas::kSmallWork;
 
 thread_local long smallCalls = 0;  // calls the loops took on this thread
-
-/// The BLAS's own definition of `name` (the next one after this program's), found once.
-template <class F>
-F nextDefinition(const char* name) {
-  void* f = dlsym(RTLD_NEXT, name);
-  if (!f) {
-    std::fprintf(stderr, "ablmg: the BLAS routine %s was not found (fem/cholmod_threads.cpp)\n", name);
-    std::abort();
-  }
-  return reinterpret_cast<F>(f);
-}
 
 /// A call inside a CholmodScope on a block of at most kSmallWork multiply-adds.
 bool small(long work) { return ablmg::fem::scopeDepth > 0 && work <= kSmallWork; }

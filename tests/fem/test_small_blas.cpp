@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <random>
 
 using namespace ablmg::fem;
@@ -172,12 +173,10 @@ TEST(SmallBlas, EntryPointsTakeSmallCallsInsideAScopeOnly) {
     const Eigen::MatrixXd c0 = C.dense();
     const double one = 1;
     const long before = smallBlasCallCount();
-    if (scoped) {
-      const CholmodScope scope;
-      dgemm_("N", "T", &m, &n, &k, &one, A.data.data(), &A.ld, B.data.data(), &B.ld, &beta, C.data.data(), &C.ld, 1, 1);
-    } else {
-      dgemm_("N", "T", &m, &n, &k, &one, A.data.data(), &A.ld, B.data.data(), &B.ld, &beta, C.data.data(), &C.ld, 1, 1);
-    }
+    std::optional<CholmodScope> scope;
+    if (scoped) scope.emplace();
+    dgemm_("N", "T", &m, &n, &k, &one, A.data.data(), &A.ld, B.data.data(), &B.ld, &beta, C.data.data(), &C.ld, 1, 1);
+    scope.reset();
     const Eigen::MatrixXd expected = A.dense() * B.dense().transpose() + beta * c0;
     EXPECT_LT(maxAbs(C.dense() - expected), 1e-12) << m << "×" << n << "×" << k;
     return smallBlasCallCount() - before;
@@ -191,12 +190,9 @@ TEST(SmallBlas, EntryPointsTakeSmallCallsInsideAScopeOnly) {
     Block D = spdBlock(3, rng);
     D.at(1, 1) = -1;
     int n = 3, info = 0;
-    if (scoped) {
-      const CholmodScope scope;
-      dpotrf_("L", &n, D.data.data(), &D.ld, &info, 1);
-    } else {
-      dpotrf_("L", &n, D.data.data(), &D.ld, &info, 1);
-    }
+    std::optional<CholmodScope> scope;
+    if (scoped) scope.emplace();
+    dpotrf_("L", &n, D.data.data(), &D.ld, &info, 1);
     EXPECT_EQ(info, 2) << (scoped ? "scoped" : "unscoped");
   }
 }
