@@ -63,24 +63,24 @@ inline void fixBlasThreads() {
 ///    flops/nnz 30) takes it: 0.18 → 0.12 s CPU; the uniform and wave-front meshes (170–210)
 ///    and the 10⁶ grid stay supernodal. final_ll: the simplicial path computes LLᵀ, whose
 ///    non-positive pivot is an error (LDLᵀ would accept an indefinite matrix).
-///  - nrelax = {8, 32, 128} (CHOLMOD's defaults: 4, 16, 48): relaxed amalgamation merges
-///    small supernodes, allowing explicit zeros. Larger merges paid while every region cost a
-///    team ({16, 64, 256}: on the uniform 317² grid 2.4× fewer OpenMP regions, 6.5 % fewer
-///    instructions); with the regions run without one (CholmodScope), the zeros cost more
-///    than the regions: numeric phase, {16, 64, 256} → {8, 32, 128}, three alternated pairs
-///    (bench_solve_graded): wave-front mesh (9.3·10⁴ unknowns) 0.100–0.111 → 0.043–0.051 s,
-///    10⁶ grid 0.97–1.08 → 0.90–0.91 s, uniform 10⁵ grid 0.030–0.031 → 0.037–0.042 s, the
-///    layer's the same; CHOLMOD's defaults were slower than {8, 32, 128} on all. On the final
-///    meshes of the library's adaptive loops (6–11·10⁴ unknowns) the whole solve took 0.82–0.98×
-///    the time on eight problems and 1.26× on the tanh layer's (docs/experiments.md).
+///  - nrelax = {4, 16, 48}, CHOLMOD's defaults, set here so that another SuiteSparse keeps
+///    them: relaxed amalgamation merges small supernodes, allowing explicit zeros. Wider
+///    merges ({16, 64, 256}, then {8, 32, 128}) paid while each supernode cost an OpenMP team
+///    and a few OpenBLAS calls of ≈ 1.5 µs; with the regions run without a team and the small
+///    BLAS calls in-line (below), the zeros cost more than the supernodes: every stored zero is
+///    memory first written, which a virtual machine charges in page faults. {8, 32, 128} → {4, 16, 48}:
+///    the final meshes of the library's ten adaptive loops (6–11·10⁴ unknowns, `ablmg solve`,
+///    best of five alternated runs) 0.92–1.01× the solve time, geometric mean 0.97; the 10⁶ grid
+///    with assembly 1.79–1.87 → 1.60–1.76 s (numeric 0.81–0.86 → 0.75–0.78 s); the 10⁵ meshes of
+///    bench_solve_graded within 3 % either way (docs/experiments.md).
 /// Used by every Poisson factorisation (fem/solve.cpp, fem/split_cholesky.cpp). Measured with
 /// bench/bench_solve_graded.cpp (docs/benchmarks.md, "Solver ordering").
 inline void configureFactorisation(cholmod_common& c) {
   c.supernodal = CHOLMOD_AUTO;
   c.final_ll = 1;
-  c.nrelax[0] = 8;
-  c.nrelax[1] = 32;
-  c.nrelax[2] = 128;
+  c.nrelax[0] = 4;
+  c.nrelax[1] = 16;
+  c.nrelax[2] = 48;
 }
 
 class CholmodScope {
