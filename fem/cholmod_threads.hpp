@@ -52,11 +52,11 @@ inline void fixBlasThreads() {
   if (openblas_set_num_threads) openblas_set_num_threads(kBlasThreads);
 }
 
-/// CHOLMOD's per-supernode overhead, not its flops, dominates a 2-D P1 factorisation at
-/// 10⁵ unknowns: every supernode opens a few OpenMP regions (CHOLMOD's compiled-in loops; a
-/// team of one under CholmodScope still costs an allocation and a futex round each) and a
-/// handful of small BLAS calls. Two settings, both chosen by CHOLMOD's own symbolic counts
-/// (deterministic: the same matrix takes the same path):
+/// A 2-D P1 factor has many small supernodes; each opens a few OpenMP regions (run without a
+/// team inside a CholmodScope, above) and makes a handful of small BLAS calls (run in-line,
+/// below). The two settings weigh that per-supernode cost against the flops and the stored
+/// zeros, both chosen by CHOLMOD's own symbolic counts (deterministic: the same matrix takes
+/// the same path):
 ///  - supernodal = CHOLMOD_AUTO: a simplicial (up-looking) factorisation when the flops
 ///    per factor entry are below CHOLMOD's supernodal_switch (40), i.e. when the fronts are
 ///    too small for BLAS to pay. The tanh layer's adapted mesh (8.7·10⁴ unknowns, 0.05 GFlop,

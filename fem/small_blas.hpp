@@ -10,7 +10,7 @@
 /// each before any arithmetic (its buffer allocator's mutex, the level-3 driver's packing):
 /// 0.05 s of the 0.06 s numeric phase for 0.35 GFlop. fem/cholmod_threads.hpp routes CHOLMOD's
 /// calls of these shapes and sizes here inside a CholmodScope; larger blocks go to the BLAS,
-/// whose blocked kernels win there. Measured in docs/benchmarks.md ("P1 solver").
+/// whose blocked kernels win there. Measured in docs/experiments.md ("CHOLMOD's small BLAS calls").
 ///
 /// Deterministic: fixed loop orders, no threads; the same inputs give the same bits.
 
