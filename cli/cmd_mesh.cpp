@@ -13,13 +13,15 @@
 #include "ablmg/core/error.hpp"
 #include "ablmg/core/stopwatch.hpp"
 #include "ablmg/io/atomic_file.hpp"
+#include "ablmg/mesher/initial_placement.hpp"
 #include "ablmg/mesher/mesher.hpp"
 #include "ablmg/mesher/quality.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include <limits>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <iomanip>
 #include <iostream>
 
@@ -179,6 +181,15 @@ void writeMeshOutputs(const Config& cfg, const std::vector<std::string>& outputs
   }
 }
 
+/// Triangles of a unit mesh of the metric on the domain: (4/√3) ∫ √det M (unit equilateral
+/// triangles have area √3/4 in the metric); 0 where the metric cannot be evaluated (the mesher
+/// then stops with its own message).
+double expectedTriangles(const Config& cfg) {
+  try {
+    return 4 / std::sqrt(3.0) * mesher::metricArea(cfg.domain, mesher::DomainGeometry(cfg.domain), *cfg.metric, 64);
+  } catch (const std::exception&) { return 0; }
+}
+
 int runMesh(const std::vector<std::string>& argv) {
   const MeshArgs args = parseMeshArgs(argv);
   if (args.help) {
@@ -201,6 +212,10 @@ int runMesh(const std::vector<std::string>& argv) {
   const std::string reportPath = args.reportPath.empty() ? cfg.outputs.report : args.reportPath;
   ABLMG_REQUIRE(!outputs.empty() || !reportPath.empty(),
                 "no output (give -o OUT.mesh|.vtu|.png or \"outputs\" in the config)");
+
+  // A large mesh is built in a new run with glibc's huge-page heap (command.hpp), so nothing is
+  // printed before that decision.
+  rerunWithHugePageHeapIfLarge(expectedTriangles(cfg));
 
   // 2. Print every option in effect, defaults included.
   const nlohmann::json resolved = {{"config", args.configPath},

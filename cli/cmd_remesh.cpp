@@ -7,6 +7,7 @@
 // IN.o.mesh. Nothing is written if anything fails.
 // The remeshing itself is adapt::remesh (adapt/remesh.hpp); this file parses the flags into
 // its RemeshOptions, reads the files, calls it, writes the files and prints.
+#include "ablmg/adapt/metric_from_hessian.hpp"
 #include "ablmg/adapt/remesh.hpp"
 #include "ablmg/cli/command.hpp"
 #include "ablmg/cli/parse_number.hpp"
@@ -86,11 +87,14 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
 /// same order, but the .sol is read on a second thread while this one reads and validates the
 /// mesh. A failed or mismatched .sol is read again after the mesh, for the sequential message.
-/// The reader's warnings (repaired quirks of the file) are printed to stderr, once the mesh is
-/// known valid, unless verbose < 0.
+/// The reader's warnings (repaired quirks of the file) are returned, once the mesh is known valid.
 /// With hsiz > 0 no .sol is read: every vertex gets the size hsiz (MMG's -hsiz).
-std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const std::string& sol, int field, int verbose,
-                                                  double hsiz) {
+struct RemeshInputs {
+  Mesh2 mesh;
+  std::vector<Metric2> metrics;
+  std::vector<std::string> warnings;
+};
+RemeshInputs readInputs(const std::string& in, const std::string& sol, int field, double hsiz) {
   auto solRead = std::async(std::launch::async, [&sol, field, hsiz] {
     return hsiz > 0 ? std::vector<Metric2>() : io::readSol(sol, -1, field);
   });
@@ -117,9 +121,13 @@ std::pair<Mesh2, std::vector<Metric2>> readInputs(const std::string& in, const s
     metrics = io::readSol(sol, mesh.numVertices(), field);
   // Edges only: remesh() triangulates them. Errors name the file's own (1-based) ids.
   if (!valid && mesh.numTriangles() > 0) mesh.requireValid(in, std::nullopt, 1e-9, 1);
-  if (verbose >= 0)  // only for inputs that are used: an error stays the one line printed
-    for (const auto& w : warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
-  return {std::move(mesh), std::move(metrics)};
+  return {std::move(mesh), std::move(metrics), std::move(warnings)};
+}
+
+/// Triangles of a unit mesh of the input's metric: (4/√3) × its complexity ∫ √det M (two
+/// triangles of area √3/4 per vertex); 0 for an input without triangles.
+double expectedTriangles(const Mesh2& mesh, std::span<const Metric2> metrics) {
+  return mesh.numTriangles() > 0 ? 4 / std::sqrt(3.0) * adapt::metricComplexity(mesh, metrics) : 0;
 }
 
 /// The command line, as parsed; paths completed with their defaults.
@@ -301,22 +309,28 @@ int runRemesh(const std::vector<std::string>& argv) {
     printEffectiveOptions("remesh", "remesh", options.mesh, own);
     return 0;
   }
-  if (args.verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
   ABLMG_REQUIRE(args.hgrad < 0 || args.hgrad > 1, "-hgrad must be > 1 (or -1 to disable), got " << args.hgrad);
 
   // 1. Input mesh and metric (errors name file:line); the mesh is validated as it is read.
+  // A large output is built in a new run with glibc's huge-page heap (command.hpp), so nothing
+  // is printed before that decision.
   ProgressLine progress("remesh", args.verbose == -1 ? 0 : args.verbose);
   options.mesh.progress = progress.callback();
   progress.update({.stage = "read"});
   RemeshTimes times;
   Stopwatch watch;
-  auto inputs = readInputs(args.in, args.sol, args.metField, args.verbose, args.hsiz);
+  RemeshInputs inputs = readInputs(args.in, args.sol, args.metField, args.hsiz);
   times.read = watch.seconds();
-  const int inVertices = inputs.first.numVertices();
-  if (args.noSurf) adapt::requireBoundaryEdges(inputs.first);
+  progress.clear();
+  rerunWithHugePageHeapIfLarge(expectedTriangles(inputs.mesh, inputs.metrics));
+  if (args.verbose >= 1) std::cout << "ablmg remesh: options " << resolved.dump() << "\n";
+  if (args.verbose >= 0)  // only for inputs that are used: an error stays the one line printed
+    for (const auto& w : inputs.warnings) std::cerr << "ablmg remesh: warning: " << w << "\n";
+  const int inVertices = inputs.mesh.numVertices();
+  if (args.noSurf) adapt::requireBoundaryEdges(inputs.mesh);
   // 2. Clamp, gradation, domain from the boundary, background field, meshing.
   options.inputCheck = BackgroundMetricField::MeshCheck::AlreadyValidated;
-  const adapt::RemeshResult r = adapt::remesh(std::move(inputs.first), std::move(inputs.second), options);
+  const adapt::RemeshResult r = adapt::remesh(std::move(inputs.mesh), std::move(inputs.metrics), options);
   // 3. Outputs: the mesh and the metric at its vertices (removed again if the second fails).
   progress.update({.stage = "write", .nodes = r.mesh.numVertices()});
   watch.restart();

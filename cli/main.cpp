@@ -112,7 +112,20 @@ static void keepLargeArraysMapped() {
   mallopt(M_MMAP_THRESHOLD, 4 << 20);
 }
 
+/// The program's arguments, for the commands that run it again (rerunWithHugePageHeapIfLarge).
+static char** programArguments = nullptr;
+
+void ablmg::cli::rerunWithHugePageHeapIfLarge(double expectedTriangles) {
+  if (!(expectedTriangles >= kHugePageHeapTriangles) || !programArguments || std::getenv("GLIBC_TUNABLES")) return;
+  std::cout.flush();
+  std::cerr.flush();
+  setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=4194304", 1);
+  execv("/proc/self/exe", programArguments);  // returns only on failure: carry on in this run
+  unsetenv("GLIBC_TUNABLES");
+}
+
 int main(int argc, char** argv) {
+  programArguments = argv;
   if (argc >= 2 &&
       (!std::strcmp(argv[1], "mesh") || !std::strcmp(argv[1], "remesh") || !std::strcmp(argv[1], "surface")))
     keepLargeArraysMapped();
