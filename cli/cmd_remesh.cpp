@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <future>
 #include <iostream>
@@ -268,6 +269,8 @@ void writeReport(const std::string& path, nlohmann::json report, const adapt::Re
   report["stats"]["gradedMetrics"] = r.gradation.corrections;
   report["stats"]["warmStarted"] = r.warmStarted;
   report["stats"]["inputWithin10"] = r.inputWithin10;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");  // the heap it ran with (command.hpp)
+  report["glibcTunables"] = tunables ? nlohmann::json(tunables) : nlohmann::json(nullptr);
   report["inVertices"] = inVertices;
   report["vertices"] = r.mesh.numVertices();
   report["triangles"] = r.mesh.numTriangles();

@@ -27,12 +27,13 @@ inline constexpr double kHugePageHeapTriangles = 2e5;
 /// runs the program again, same arguments, with
 /// GLIBC_TUNABLES=glibc.malloc.hugetlb=1:glibc.malloc.mmap_threshold=4194304 (every heap
 /// growth and large block advised for transparent huge pages: one page fault per 2 MB instead
-/// of per 4 KB; the 10⁶-triangle refinement's meshing 1.32–1.45 → 1.03–1.13 s at the same
-/// peak, docs/experiments.md "glibc's huge-page heap"). glibc reads tunables only at start-up,
-/// hence the new run, which costs the start-up (≈ 40 ms) and the input's reading again; below
-/// the threshold the run goes on as it is. Returns without doing anything when GLIBC_TUNABLES
-/// is set (the user's choice, empty included: `GLIBC_TUNABLES= ablmg …` keeps one run) or the
-/// new run cannot start. Call it before anything is printed or written: the new run repeats it.
+/// of per 4 KB; the 10⁶-triangle refinement's meshing 1.38–1.76 → 1.20–1.46 s at the same
+/// peak, docs/experiments.md "glibc's huge-page heap for large outputs"; the meshes are the
+/// same). glibc reads tunables only at start-up, hence the new run, which costs the start-up
+/// (≈ 40 ms) and the input's reading again: below the threshold the gain is smaller than that
+/// and the run goes on as it is. Returns without doing anything when GLIBC_TUNABLES is set (the
+/// user's choice, empty included: `GLIBC_TUNABLES= ablmg …` keeps one run) or the new run
+/// cannot start. Call it before anything is printed or written: the new run repeats it.
 void rerunWithHugePageHeapIfLarge(double expectedTriangles);
 
 }  // namespace ablmg::cli

@@ -35,6 +35,10 @@ set_tests_properties(cli.remesh_report PROPERTIES LABELS cli PASS_REGULAR_EXPRES
 add_test(NAME cli.remesh_report_contents
          COMMAND ${CMAKE_COMMAND} -DREPORT=${_out}/remesh_report.json -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_remesh_report.cmake.in)
 set_tests_properties(cli.remesh_report_contents PROPERTIES LABELS cli DEPENDS cli.remesh_report)
+add_test(NAME cli.remesh_huge_page_heap
+         COMMAND ${CMAKE_COMMAND} -DABLMG=$<TARGET_FILE:ablmg> -DDATA=${_data} -DOUT=${_out}/huge_page_heap
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/cli/check_huge_page_heap.cmake.in)
+set_tests_properties(cli.remesh_huge_page_heap PROPERTIES LABELS cli)
 ablmg_cli_failure(remesh_report_is_output "--report must not be the output mesh or .sol"
                   remesh -in ${_data}/square.mesh -sol ${_data}/square.sol -out ${_out}/remesh_report_is_output.mesh
                   --report ${_out}/remesh_report_is_output.mesh)
