@@ -44,6 +44,9 @@ Meshes the domain of CONFIG.json with the metric it prescribes (schema: docs/con
   --print-options  print the mesher options in effect (JSON: the preset, options.preset of the
                    config or "mesh", and every field) and exit; without CONFIG.json, the defaults
   -h, --help       this text
+A mesh of 2e5 triangles or more (from the metric) is built in a second run of the program under
+glibc's huge-page heap (GLIBC_TUNABLES; faster where page faults are dear, the same mesh);
+GLIBC_TUNABLES set by the user, even empty, keeps one run.
 )";
 
 /// Fixed corners closer than the metric asks crowd the boundary (every point of a loop that is

@@ -83,6 +83,9 @@ Remeshes IN.mesh so that edges have unit length in the metric of IN.sol (MMG's m
   --report R.json  JSON report: options, statistics of every stage, times, and the output's
                    quality in its metric (as `ablmg stats OUT.mesh --sol OUT.sol --json`)
   -h, --help       this text
+An output of 2e5 triangles or more (from the metric) is built in a second run of the program
+under glibc's huge-page heap (GLIBC_TUNABLES; faster where page faults are dear, the same mesh);
+GLIBC_TUNABLES set by the user, even empty, keeps one run.
 )";
 
 /// readMesh(in), readSol(sol, its vertex count), requireValid(in), with the same errors in the
